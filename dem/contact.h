@@ -1,0 +1,92 @@
+// Contact geometry, per-contact parameters and per-contact history.
+//
+// The split follows MercuryDPM/YADE: the geometry of a contact is computed
+// once per step (ContactGeometry, "Ig2"), the parameters of a pair are fixed
+// when the pair is created (ContactParams, "Ip2"), and everything that evolves
+// lives in ContactState, owned by the ContactTable (ball-ball) or the WallSet
+// (ball-wall).  A contact law ("Law2") reads the first two and updates the
+// third; laws themselves hold only model constants.
+//
+// Frame: the unit normal n points from the first entity to the second (for a
+// ball-wall contact the wall is first).  The force stored in a contact is the
+// force on the second entity: F = F_n n + F_s, with F_n > 0 in compression
+// (thesis eq. 3.1-3.2).  The first entity receives -F.
+#pragma once
+
+#include "types.h"
+
+#include <cmath>
+
+namespace dem
+{
+/// Pair constants fixed when the pair is created.
+struct ContactParams
+{
+  double kn = 0;       ///< N/m, normal stiffness K^n of the pair (eq. 3.17)
+  double ks = 0;       ///< N/m, shear stiffness K^s of the pair (eq. 3.18)
+  double friction = 0; ///< -, Coulomb coefficient of the pair
+};
+
+/// Two stiffnesses in series, k_A k_B / (k_A + k_B) (eq. 3.17-3.18); zero if
+/// either is zero (a frictionless, shear-free platen has ks = 0).
+inline double in_series(double a, double b)
+{
+  return (a > 0 && b > 0) ? a * b / (a + b) : 0.0;
+}
+
+/// PFC3D contact bond (thesis §3.4.2): strengths are forces.
+struct ContactBond
+{
+  bool intact = false;
+  double normal_strength = 0; ///< N, tensile strength phi_n
+  double shear_strength = 0;  ///< N, shear strength phi_s
+};
+
+/// How a bond broke; recorded in the break log.
+enum class BreakMode : std::uint8_t
+{
+  none = 0,
+  tension = 1,
+  shear = 2,
+};
+
+/// History of one contact.  Reset when the entities separate.
+struct ContactState
+{
+  Vec3 shear_force = Vec3::Zero(); ///< N, F_s on the second entity
+  Vec3 normal = Vec3::Zero();      ///< unit normal at the last update (zero: new contact)
+  double normal_force = 0;         ///< N, F_n (compression positive)
+  double overlap = 0;              ///< m, U at the last update
+  double friction_work = 0;        ///< J, energy dissipated by Coulomb slip so far
+  double bond_energy = 0;          ///< J, elastic energy released by the bond's break
+  bool touching = false;           ///< carried a force at the last update
+};
+
+/// Geometry of a contact at time t, computed once per step.
+struct ContactGeometry
+{
+  Vec3 normal;              ///< unit, first -> second
+  double overlap;           ///< m, U > 0 when interpenetrating
+  Vec3 relative_velocity;   ///< m/s, second relative to first, at the contact point
+  double twist_rate;        ///< rad/s, mean spin of the two entities about the normal
+  double arm_first;         ///< m, centre of first to contact point (0 for walls)
+  double arm_second;        ///< m, centre of second to contact point
+};
+
+/// Rotates a shear vector with the contact plane, as PFC3D does each step:
+/// first by the smallest rotation that carries the old normal onto the new
+/// one (exact Rodrigues formula), then about the new normal by the mean spin
+/// of the two entities.  Without this a rigid rotation of a loaded pair
+/// would change its shear force (VERIFICATION.md item 4).
+inline Vec3 rotate_with_contact_plane(const Vec3 &v, const Vec3 &old_normal,
+                                      const Vec3 &new_normal, double twist_angle)
+{
+  const Vec3 axis = old_normal.cross(new_normal); // |axis| = sin(theta)
+  const double c = old_normal.dot(new_normal);
+  Vec3 r = c * v + axis.cross(v) + (axis.dot(v) / (1.0 + c)) * axis;
+  // A first-order turn about the normal, renormalised: the angle is
+  // atan(twist_angle), within twist^3/3 of the exact one.
+  r = (r + twist_angle * new_normal.cross(r)) / std::sqrt(1.0 + twist_angle * twist_angle);
+  return r - r.dot(new_normal) * new_normal;
+}
+} // namespace dem

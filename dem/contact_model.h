@@ -1,0 +1,164 @@
+// ContactModel: the ball-ball contact law of a simulation, chosen by keyword
+// from the registry (law_registry.cpp).
+//
+// The virtual call happens once per step; inside, LawModel<Law> runs the
+// whole contact pass with the law inlined.  The pass is parallel over
+// contacts and each contact writes only its own entries, so results do not
+// depend on the thread count.
+//
+// Ball-wall contacts always use the linear law with the wall's own
+// properties (walls.h): walls are steel platens, and the viscoelastic laws
+// describe the bitumen between grains.
+#pragma once
+
+#include "contact_resolve.h"
+#include "contacts.h"
+#include "law_linear.h"
+#include "stability.h"
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace dem
+{
+class ContactModel
+{
+public:
+  virtual ~ContactModel() = default;
+  virtual std::string_view name() const = 0;
+
+  /// Resolves every entry of the table at the current positions; dt is the
+  /// step that produced the displacement since the last call.  Writes
+  /// table.loads() and returns how many bonds broke.
+  virtual std::size_t resolve_pairs(const ParticleStore &particles, ContactTable &table,
+                                    double dt) = 0;
+
+  /// Carries the law's own history over a table rebuild.
+  virtual void remap_history(const std::vector<std::ptrdiff_t> &origin) = 0;
+
+  /// Elastic energy stored in all ball-ball contacts [J].
+  virtual double stored_energy(const ContactTable &table) const = 0;
+};
+
+/// Geometry of the ball-ball contact (i, j) at the current positions.
+inline ContactGeometry sphere_sphere(const ParticleStore &p, Index i, Index j)
+{
+  ContactGeometry g;
+  const Vec3 d = p.position[j] - p.position[i];
+  const double dist = d.norm();
+  g.normal = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
+  g.overlap = p.radius[i] + p.radius[j] - dist;
+  g.arm_first = p.radius[i] - 0.5 * g.overlap;
+  g.arm_second = p.radius[j] - 0.5 * g.overlap;
+  const Vec3 vi = p.velocity[i] + p.spin[i].cross(g.arm_first * g.normal);
+  const Vec3 vj = p.velocity[j] + p.spin[j].cross(-g.arm_second * g.normal);
+  g.relative_velocity = vj - vi;
+  g.twist_rate = 0.5 * (p.spin[i] + p.spin[j]).dot(g.normal);
+  return g;
+}
+
+template <class Law>
+class LawModel final : public ContactModel
+{
+public:
+  explicit LawModel(Law law) : law_(std::move(law)) {}
+
+  std::string_view name() const override { return Law::keyword; }
+  const Law &law() const { return law_; }
+
+  std::size_t resolve_pairs(const ParticleStore &p, ContactTable &table, double dt) override
+  {
+    std::vector<Contact> &contacts = table.entries();
+    std::vector<ContactLoad> &loads = table.loads();
+    history_.resize(contacts.size());
+    const auto n = static_cast<std::ptrdiff_t>(contacts.size());
+    std::size_t breaks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : breaks)
+    for (std::ptrdiff_t c = 0; c < n; ++c)
+    {
+      Contact &k = contacts[c];
+      ContactLoad &load = loads[c];
+      const Index i = k.first, j = k.second;
+      if (!k.bond.intact && !k.state.touching)
+      {
+        // Fast exit for candidates that are not touching.
+        const double reach = p.radius[i] + p.radius[j];
+        if ((p.position[j] - p.position[i]).squaredNorm() >= reach * reach)
+        {
+          load = ContactLoad{};
+          continue;
+        }
+      }
+      const ContactGeometry g = sphere_sphere(p, i, j);
+      const ResolvedContact r = resolve_contact(law_, k.params, k.bond, k.state, history_[c], g, dt);
+      if (r.broke != BreakMode::none)
+        ++breaks;
+      if (!r.touching)
+      {
+        load = ContactLoad{};
+        load.broke = r.broke;
+        continue;
+      }
+      load.broke = r.broke;
+      const Vec3 lever = g.normal.cross(k.state.shear_force);
+      load.force = r.force;
+      load.torque_first = -g.arm_first * lever;
+      load.torque_second = -g.arm_second * lever;
+      const double kn = law_.normal_stiffness(k.params), ks = law_.shear_stiffness(k.params);
+      const double bi = shear_mobility(p.inv_mass[i], p.inv_inertia[i], g.arm_first);
+      const double bj = shear_mobility(p.inv_mass[j], p.inv_inertia[j], g.arm_second);
+      load.bound_first = stability_row_term(kn, ks, p.inv_mass[i], bi, p.inv_mass[j], bj);
+      load.bound_second = stability_row_term(kn, ks, p.inv_mass[j], bj, p.inv_mass[i], bi);
+    }
+    return breaks;
+  }
+
+  void remap_history(const std::vector<std::ptrdiff_t> &origin) override
+  {
+    if constexpr (!std::is_empty_v<typename Law::History>)
+    {
+      std::vector<typename Law::History> next(origin.size());
+      for (std::size_t c = 0; c < origin.size(); ++c)
+        if (origin[c] >= 0 && static_cast<std::size_t>(origin[c]) < history_.size())
+          next[c] = history_[origin[c]];
+      history_.swap(next);
+    }
+    else
+      history_.resize(origin.size());
+  }
+
+  double stored_energy(const ContactTable &table) const override
+  {
+    double e = 0;
+    for (std::size_t c = 0; c < table.size(); ++c)
+    {
+      const ContactState &s = table[c].state;
+      if (s.touching)
+        e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, history_[c]);
+    }
+    return e;
+  }
+
+private:
+  Law law_;
+  std::vector<typename Law::History> history_;
+};
+
+/// Law constants a deck can set; each law reads the ones it needs.
+struct LawParameters
+{
+};
+
+/// The registry: one row per law keyword (law_registry.cpp).
+struct LawEntry
+{
+  std::string_view keyword;
+  std::unique_ptr<ContactModel> (*make)(const LawParameters &);
+  std::string_view summary;
+};
+
+const std::vector<LawEntry> &law_registry();
+/// The model for a keyword, or nullptr if the keyword is unknown.
+std::unique_ptr<ContactModel> make_contact_model(std::string_view keyword, const LawParameters &p);
+} // namespace dem

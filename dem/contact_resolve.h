@@ -1,0 +1,116 @@
+// The contact resolver: one contact, one step, any law.
+//
+//   1. a contact exists when the entities overlap (U > 0) or a bond joins
+//      them; otherwise its history is cleared (thesis §3.3.2: a new contact
+//      starts with zero shear force);
+//   2. the old shear force is rotated with the contact plane;
+//   3. the law gives trial normal and shear forces (law_*.h);
+//   4. the PFC3D contact bond and slip rules of thesis §3.4.2 apply:
+//        bonded:   tension allowed; if -F_n >= phi_n the bond breaks and both
+//                  forces are set to zero; if |F_s| >= phi_s the bond breaks
+//                  and the forces stay unless they exceed the slip limit;
+//        unbonded: no tension; |F_s| <= mu F_n (Coulomb slip, the excess is
+//                  dissipated as friction work).
+//      A bond never breaks in compression under the normal criterion.
+//
+// Energy: friction work is F_s,new . (F_trial - F_s,new) / K^s per slipping
+// step (the slip displacement times the force that resists it); a break
+// releases the stored energy the forces lose at that step.
+#pragma once
+
+#include "contact.h"
+
+namespace dem
+{
+struct ResolvedContact
+{
+  Vec3 force = Vec3::Zero(); ///< N, on the second entity
+  BreakMode broke = BreakMode::none;
+  bool touching = false;
+};
+
+template <class Law>
+ResolvedContact resolve_contact(const Law &law, const ContactParams &params, ContactBond &bond,
+                                ContactState &state, typename Law::History &history,
+                                const ContactGeometry &g, double dt)
+{
+  ResolvedContact out;
+  if (g.overlap <= 0 && !bond.intact)
+  {
+    state.shear_force.setZero();
+    state.normal.setZero();
+    state.normal_force = 0;
+    state.overlap = g.overlap;
+    state.touching = false;
+    history = typename Law::History{};
+    return out;
+  }
+
+  const bool new_contact = state.normal.isZero(0);
+  Vec3 shear = state.shear_force;
+  if (!new_contact)
+    shear = rotate_with_contact_plane(shear, state.normal, g.normal, g.twist_rate * dt);
+  const Vec3 shear_increment =
+    (g.relative_velocity - g.relative_velocity.dot(g.normal) * g.normal) * dt;
+
+  double fn = law.normal_force(params, g.overlap, history, dt);
+  shear = law.shear_force(params, shear, shear_increment, history, dt);
+
+  const auto limit_by_friction = [&](double normal_force) {
+    const double limit = params.friction * std::max(normal_force, 0.0);
+    const double magnitude = shear.norm();
+    if (magnitude > limit)
+    {
+      const Vec3 limited = magnitude > 0 ? Vec3(shear * (limit / magnitude)) : Vec3::Zero();
+      if (params.ks > 0)
+        state.friction_work += limited.dot(shear - limited) / params.ks;
+      shear = limited;
+    }
+  };
+
+  if (bond.intact)
+  {
+    if (fn < 0 && -fn >= bond.normal_strength)
+    {
+      state.bond_energy += law.stored_energy(params, fn, shear, history);
+      bond.intact = false;
+      out.broke = BreakMode::tension;
+      fn = 0;
+      shear.setZero();
+    }
+    else if (shear.norm() >= bond.shear_strength)
+    {
+      const double before = law.stored_energy(params, fn, shear, history);
+      bond.intact = false;
+      out.broke = BreakMode::shear;
+      if (fn < 0)
+      {
+        fn = 0;
+        shear.setZero();
+      }
+      else
+      {
+        const double limit = params.friction * fn;
+        const double magnitude = shear.norm();
+        if (magnitude > limit)
+          shear *= limit / magnitude;
+      }
+      state.bond_energy += before - law.stored_energy(params, fn, shear, history);
+    }
+  }
+  else
+  {
+    fn = std::max(fn, 0.0);
+    limit_by_friction(fn);
+  }
+
+  state.normal = g.normal;
+  state.normal_force = fn;
+  state.overlap = g.overlap;
+  state.shear_force = shear;
+  state.touching = g.overlap > 0 || bond.intact;
+  out.touching = state.touching;
+  out.force = fn * g.normal + shear;
+  return out;
+}
+} // namespace dem

@@ -1,0 +1,98 @@
+// ContactTable: every ball-ball pair the engine must look at, with history.
+//
+// The table holds the neighbour candidates plus every pair that is touching
+// or bonded, sorted by (first, second).  Each entry carries its pair
+// constants (ContactParams, fixed at creation), its bond and its history
+// (ContactState).  When the neighbour list is rebuilt the table merges the
+// new candidates with the old entries by one linear walk over two sorted
+// lists: history survives rebuilds without hashing, and a bonded pair stays
+// in the table however far its balls drift apart.  `origin()` tells, for
+// each new entry, which old entry it continues, so that a law's own history
+// can follow (ContactModel::remap_history).
+//
+// The per-step results (force on the second ball, torques on both, the
+// stability-bound contributions) live in a separate array of ContactLoad:
+// the contact pass writes one entry per contact and the particle pass gathers
+// them in a fixed order, so no two threads ever write the same particle.
+#pragma once
+
+#include "contact.h"
+#include "neighbors.h"
+
+#include <vector>
+
+namespace dem
+{
+struct Contact
+{
+  Index first = 0;
+  Index second = 0;
+  ContactParams params;
+  ContactBond bond;
+  ContactState state;
+};
+
+/// What one contact contributes to its two balls at this step.
+struct ContactLoad
+{
+  Vec3 force = Vec3::Zero();         ///< N, on the second ball (the first gets -force)
+  Vec3 torque_first = Vec3::Zero();  ///< N m
+  Vec3 torque_second = Vec3::Zero(); ///< N m
+  double bound_first = 0;            ///< 1/s^2, stability-bound row term of the first ball
+  double bound_second = 0;           ///< 1/s^2, same for the second ball
+  BreakMode broke = BreakMode::none; ///< the bond broke at this step
+};
+
+/// Energy carried away by contacts that left the table.
+struct RetiredContactEnergy
+{
+  double friction_work = 0; ///< J
+  double bond_energy = 0;   ///< J
+};
+
+class ContactTable
+{
+public:
+  /// Pair constants of a new ball-ball pair: stiffnesses in series, the
+  /// smaller friction coefficient.
+  static ContactParams pair_params(const ParticleStore &p, Index i, Index j);
+
+  /// Merges sorted candidates with the current entries (see header note).
+  void rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles);
+
+  /// Adds pair (i, j) if absent and returns its entry.  For set-up only (O(n)).
+  Contact &ensure(Index i, Index j, const ParticleStore &particles);
+  /// Entry of pair (i, j) or nullptr; binary search.
+  Contact *find(Index i, Index j);
+  const Contact *find(Index i, Index j) const;
+
+  std::size_t size() const { return contacts_.size(); }
+  Contact &operator[](std::size_t c) { return contacts_[c]; }
+  const Contact &operator[](std::size_t c) const { return contacts_[c]; }
+  std::vector<Contact> &entries() { return contacts_; }
+  const std::vector<Contact> &entries() const { return contacts_; }
+  std::vector<ContactLoad> &loads() { return loads_; }
+  const std::vector<ContactLoad> &loads() const { return loads_; }
+
+  /// For entry c after the last rebuild: index of the entry it continues, or -1.
+  const std::vector<std::ptrdiff_t> &origin() const { return origin_; }
+
+  /// Contacts where p is the first ball: [first_begin(p), first_begin(p+1)).
+  std::size_t first_begin(Index p) const { return first_start_[p]; }
+  /// Contacts where p is the second ball: second_list()[second_begin(p) ...].
+  std::size_t second_begin(Index p) const { return second_start_[p]; }
+  const std::vector<std::size_t> &second_list() const { return second_list_; }
+
+  const RetiredContactEnergy &retired() const { return retired_; }
+
+private:
+  void rebuild_adjacency(Index particles);
+  void retire(const Contact &c);
+
+  std::vector<Contact> contacts_, scratch_;
+  std::vector<ContactLoad> loads_;
+  std::vector<std::ptrdiff_t> origin_;
+  std::vector<std::size_t> first_start_, second_start_, second_list_, scratch_positions_;
+  RetiredContactEnergy retired_;
+};
+} // namespace dem

@@ -1,0 +1,111 @@
+#include "neighbors.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace dem
+{
+namespace
+{
+bool within(const ParticleStore &p, Index i, Index j, double skin)
+{
+  const double reach = p.radius[i] + p.radius[j] + skin;
+  return (p.position[i] - p.position[j]).squaredNorm() < reach * reach;
+}
+} // namespace
+
+bool NeighborList::stale(const ParticleStore &particles) const
+{
+  if (reference_.size() != static_cast<std::size_t>(particles.size()))
+    return true;
+  return !std::equal(reference_radius_.begin(), reference_radius_.end(), particles.radius.begin());
+}
+
+void NeighborList::rebuild(const ParticleStore &particles)
+{
+  const Index n = particles.size();
+  reference_ = particles.position;
+  reference_radius_ = particles.radius;
+  quarter_skin_sq_ = 0.25 * skin_ * skin_;
+  pairs_.clear();
+  ++rebuilds_;
+  if (n == 0)
+    return;
+
+  Vec3 lo = particles.position[0], hi = lo;
+  for (const Vec3 &x : particles.position)
+  {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  // Cells at least one interaction range wide, so neighbours of a ball are
+  // in the 27 cells around it; coarsened if stray balls stretch the box.
+  double h = 2.0 * particles.max_radius() + skin_;
+  const Vec3 extent = (hi - lo).cwiseMax(h);
+  std::array<long, 3> dims{};
+  const long max_cells = 8L * n + 64;
+  for (;;)
+  {
+    for (int k = 0; k < 3; ++k)
+      dims[k] = std::max(1L, static_cast<long>(extent[k] / h));
+    if (dims[0] * dims[1] * dims[2] <= max_cells)
+      break;
+    h *= 1.25;
+  }
+  const long cells = dims[0] * dims[1] * dims[2];
+  const auto coord = [&](const Vec3 &x, int k) {
+    return std::min(dims[k] - 1, static_cast<long>((x[k] - lo[k]) / h));
+  };
+  const auto cell_id = [&](long cx, long cy, long cz) { return (cz * dims[1] + cy) * dims[0] + cx; };
+
+  // Counting sort of balls into cells.
+  cell_of_.resize(n);
+  cell_start_.assign(cells + 1, 0);
+  for (Index p = 0; p < n; ++p)
+  {
+    const Vec3 &x = particles.position[p];
+    cell_of_[p] = static_cast<Index>(cell_id(coord(x, 0), coord(x, 1), coord(x, 2)));
+    ++cell_start_[cell_of_[p] + 1];
+  }
+  for (long c = 0; c < cells; ++c)
+    cell_start_[c + 1] += cell_start_[c];
+  cell_members_.resize(n);
+  cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  for (Index p = 0; p < n; ++p)
+    cell_members_[cell_fill_[cell_of_[p]]++] = p;
+
+  std::vector<Index> &partners = partners_;
+  for (Index i = 0; i < n; ++i)
+  {
+    const Vec3 &x = particles.position[i];
+    const long cx = coord(x, 0), cy = coord(x, 1), cz = coord(x, 2);
+    partners.clear();
+    for (long z = std::max(0L, cz - 1); z <= std::min(dims[2] - 1, cz + 1); ++z)
+      for (long y = std::max(0L, cy - 1); y <= std::min(dims[1] - 1, cy + 1); ++y)
+        for (long xx = std::max(0L, cx - 1); xx <= std::min(dims[0] - 1, cx + 1); ++xx)
+        {
+          const long c = cell_id(xx, y, z);
+          for (Index k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+          {
+            const Index j = cell_members_[k];
+            if (j > i && within(particles, i, j, skin_))
+              partners.push_back(j);
+          }
+        }
+    std::sort(partners.begin(), partners.end());
+    for (Index j : partners)
+      pairs_.emplace_back(i, j);
+  }
+}
+
+std::vector<Pair> brute_force_pairs(const ParticleStore &particles, double skin)
+{
+  std::vector<Pair> out;
+  for (Index i = 0; i < particles.size(); ++i)
+    for (Index j = i + 1; j < particles.size(); ++j)
+      if (within(particles, i, j, skin))
+        out.emplace_back(i, j);
+  return out;
+}
+} // namespace dem

@@ -1,0 +1,58 @@
+// Neighbour search: linked cells plus a skin (Verlet list).
+//
+// A pair (i, j), i < j, is a candidate when its centre distance is below
+// R_i + R_j + skin.  While no ball has moved more than skin/2 since the last
+// build, no pair outside the list can touch, so the list is rebuilt only
+// when some ball has; the cell build is O(N) for a bounded density.
+// Candidates come sorted by (first, second): the contact table merges its
+// history into a new list by a linear walk, with no hashing.
+//
+// brute_force_pairs() is the O(N^2) oracle the tests compare against.
+#pragma once
+
+#include "particles.h"
+
+#include <utility>
+#include <vector>
+
+namespace dem
+{
+using Pair = std::pair<Index, Index>;
+
+class NeighborList
+{
+public:
+  explicit NeighborList(double skin = 0) : skin_(skin) {}
+
+  double skin() const { return skin_; }
+  void set_skin(double skin) { skin_ = skin; }
+
+  /// Builds the candidate list for the current positions and radii.
+  void rebuild(const ParticleStore &particles);
+
+  /// True when ball p at x has moved more than skin/2 since the last build.
+  bool moved_too_far(Index p, const Vec3 &x) const
+  {
+    return (x - reference_[p]).squaredNorm() > quarter_skin_sq_;
+  }
+
+  /// True when the list must be rebuilt before it can be trusted again
+  /// (never built, particle count changed, or radii changed).
+  bool stale(const ParticleStore &particles) const;
+
+  const std::vector<Pair> &pairs() const { return pairs_; }
+  std::size_t rebuilds() const { return rebuilds_; }
+
+private:
+  double skin_;
+  double quarter_skin_sq_ = 0;
+  std::vector<Vec3> reference_;
+  std::vector<double> reference_radius_;
+  std::vector<Pair> pairs_;
+  std::vector<Index> cell_start_, cell_members_, cell_of_, cell_fill_, partners_;
+  std::size_t rebuilds_ = 0;
+};
+
+/// All pairs i < j with |x_i - x_j| < R_i + R_j + skin, sorted.  O(N^2).
+std::vector<Pair> brute_force_pairs(const ParticleStore &particles, double skin);
+} // namespace dem

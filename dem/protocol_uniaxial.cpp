@@ -1,0 +1,48 @@
+#include "protocol_uniaxial.h"
+
+#include <algorithm>
+
+namespace dem
+{
+UniaxialCompression::UniaxialCompression(const Simulation &sim, WallIndex bottom, WallIndex top,
+                                         double area, const UniaxialSettings &settings)
+  : bottom_(bottom), top_(top), area_(area), height0_(0), speed_(0), settings_(settings)
+{
+  height0_ = separation(sim);
+  speed_ = settings.platen_speed > 0 ? settings.platen_speed : settings.strain_rate * height0_;
+}
+
+double UniaxialCompression::separation(const Simulation &sim) const
+{
+  const Wall &b = sim.walls()[bottom_];
+  return (sim.walls()[top_].point - b.point).dot(b.direction);
+}
+
+double UniaxialCompression::axial_strain(const Simulation &sim) const
+{
+  return (height0_ - separation(sim)) / height0_;
+}
+
+double UniaxialCompression::platen_stress(const Simulation &sim, WallIndex w) const
+{
+  return -sim.wall_force(w).dot(sim.walls()[w].direction) / area_;
+}
+
+void UniaxialCompression::drive(Simulation &sim) const
+{
+  const double ramp = settings_.ramp_time > 0 ? std::min(1.0, sim.time() / settings_.ramp_time) : 1.0;
+  const double speed = speed_ * ramp;
+  Wall &top = sim.walls()[top_];
+  Wall &bottom = sim.walls()[bottom_];
+  if (settings_.both_platens)
+  {
+    top.velocity = 0.5 * speed * top.direction;
+    bottom.velocity = 0.5 * speed * bottom.direction;
+  }
+  else
+  {
+    top.velocity = speed * top.direction;
+    bottom.velocity.setZero();
+  }
+}
+} // namespace dem

@@ -1,0 +1,160 @@
+// Simulation: one DEM model and its time loop (thesis §3.3.2, Fig. 3.8).
+//
+// A step is a short pipeline:
+//
+//   compute_forces()   rebuild neighbours if a ball moved more than skin/2,
+//                      resolve ball-ball contacts (law + bonds + slip),
+//                      log bond breaks, gather forces per ball with walls and
+//                      gravity, choose the time step;
+//   integrate()        centred differences with local damping (eq. 3.7-3.9),
+//                      energy increments, blow-up checks, walls move.
+//
+// Between the two phases positions, forces and walls are all at the same
+// time t, which is when measurements are taken (see Simulation::step).
+//
+// Time step: a safety fraction of the critical step bound of stability.h,
+// re-evaluated every step from the contacts that carry force at that step;
+// or a fixed step, refused (NumericalFault) when it exceeds the bound unless
+// the caller allows unstable steps.  When the step changes, the velocity
+// update uses the mean of the old and new steps, which keeps the scheme
+// second order.
+//
+// Determinism: contacts write only their own entries, balls gather their
+// contacts in a fixed order and every reduction is order-free (max, min,
+// logical or) or serial, so results are identical for any thread count.
+#pragma once
+
+#include "contact_model.h"
+#include "energy.h"
+#include "walls.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dem
+{
+struct SimulationSettings
+{
+  Vec3 gravity = Vec3::Zero();     ///< m/s^2
+  double local_damping = 0.7;      ///< -, PFC local damping coefficient alpha
+  double time_step_safety = 0.8;   ///< -, fraction of the critical step bound
+  double fixed_time_step = 0;      ///< s, > 0 fixes the step
+  bool allow_unstable_step = false;///< run a fixed step above the bound anyway
+  double skin_fraction = 0.25;     ///< -, neighbour skin / largest radius
+};
+
+struct BondBreak
+{
+  double time = 0; ///< s
+  Index first = 0, second = 0;
+  BreakMode mode = BreakMode::none;
+  double normal_force = 0;  ///< N, trial normal force at the break
+  double shear_force = 0;   ///< N, trial shear force magnitude at the break
+};
+
+/// A numerical fault: NaN, runaway motion, unstable fixed step.
+class NumericalFault : public std::runtime_error
+{
+public:
+  NumericalFault(long step, double time, Index particle, const std::string &what);
+  long step;
+  double time;
+  Index particle; ///< -1 when no single ball is to blame
+};
+
+class Simulation
+{
+public:
+  Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<ContactModel> model,
+             SimulationSettings settings);
+
+  /// One full step.  Equivalent to compute_forces(); integrate(false).
+  void step();
+  void compute_forces();
+  /// Advances by the step chosen in compute_forces().  With measure_kinetic
+  /// the kinetic energy at the force time is evaluated (energy()).
+  void integrate(bool measure_kinetic = false);
+
+  double time() const { return time_; }
+  long steps() const { return step_; }
+  /// The step chosen by the last compute_forces() [s].
+  double time_step() const { return dt_; }
+  /// The critical step bound of the force-carrying contacts at the last
+  /// compute_forces() [s]; infinite when no contact carries force.
+  double critical_time_step() const { return dt_critical_; }
+  /// Ball that sets the critical step bound (-1 if no contact carries force).
+  Index critical_particle() const;
+
+  ParticleStore &particles() { return particles_; }
+  const ParticleStore &particles() const { return particles_; }
+  WallSet &walls() { return walls_; }
+  const WallSet &walls() const { return walls_; }
+  ContactTable &contacts() { return contacts_; }
+  const ContactTable &contacts() const { return contacts_; }
+  const ContactModel &model() const { return *model_; }
+  const NeighborList &neighbors() const { return neighbors_; }
+  SimulationSettings &settings() { return settings_; }
+  const SimulationSettings &settings() const { return settings_; }
+
+  /// Forces the neighbour list and contact table to be rebuilt before the
+  /// next force computation (after radii or positions were edited).
+  void invalidate_neighbors() { rebuild_requested_ = true; }
+  /// Rebuilds the neighbour list and contact table now (e.g. before bonding).
+  void refresh_contacts();
+
+  /// Energy terms at the last force time.  Kinetic energy is current only
+  /// after integrate(true).
+  EnergyLedger energy() const;
+
+  /// Force exerted by the balls on wall w at the last force time [N].
+  Vec3 wall_force(WallIndex w) const;
+
+  /// Removes (or restores) wall w, e.g. the lateral wall before a uniaxial
+  /// test (thesis §5.3.4).
+  void set_wall_enabled(WallIndex w, bool enabled);
+
+  /// Bond breaks since the last call (oldest first).
+  std::vector<BondBreak> take_breaks();
+  std::size_t bonds_broken(BreakMode mode) const;
+
+private:
+  void record_breaks();
+  void gather_forces();
+  void choose_time_step();
+  [[noreturn]] void fail(Index particle, const std::string &what) const;
+  /// Strain energy stored in and friction work done by the contacts of wall w [J].
+  std::pair<double, double> wall_energy(WallIndex w) const;
+
+  ParticleStore particles_;
+  WallSet walls_;
+  std::unique_ptr<ContactModel> model_;
+  SimulationSettings settings_;
+  NeighborList neighbors_;
+  ContactTable contacts_;
+
+  double time_ = 0;
+  long step_ = 0;
+  double dt_ = 0, dt_prev_ = 0, dt_critical_ = infinity;
+  bool rebuild_requested_ = true;
+  bool forces_current_ = false;
+
+  // Per-ball scratch, sized once: no allocation inside the step.
+  std::vector<double> row_bound_;  ///< 1/s^2, stability row bound of the contacts
+  std::vector<double> lone_bound_; ///< 1/s^2, row bound of one contact with the ball's own stiffness
+  std::vector<double> wall_power_; ///< W, sum over walls of F_wall->ball . v_wall
+
+  struct BallEnergy
+  {
+    double boundary = 0, body = 0, damping = 0, kinetic = 0;
+  };
+  std::vector<BallEnergy> ball_energy_;
+  double initial_energy_ = 0;
+  double removed_wall_strain_ = 0, removed_wall_friction_ = 0;
+  bool initial_recorded_ = false;
+
+  std::vector<BondBreak> breaks_;
+  std::size_t broken_tension_ = 0, broken_shear_ = 0;
+};
+} // namespace dem

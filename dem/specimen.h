@@ -1,0 +1,35 @@
+// Specimen: a cylindrical sample between two platens, ready to test.
+//
+// Axis z; bottom platen at z = 0 facing up, top platen at z = height facing
+// down, and (optionally) the lateral cylinder of the sample's diameter.
+// Every test protocol starts from a Specimen, whichever way its balls were
+// made (a lattice here; a prepared random packing with issue 3).
+#pragma once
+
+#include "particles.h"
+#include "sample_lattice.h"
+#include "walls.h"
+
+#include <string>
+
+namespace dem
+{
+struct Specimen
+{
+  ParticleStore particles;
+  WallSet walls;
+  WallIndex bottom = -1, top = -1, lateral = -1;
+  double diameter = 0; ///< m
+  double height = 0;   ///< m
+  std::string description;
+
+  double area() const { return pi * 0.25 * diameter * diameter; }
+};
+
+/// A lattice cylinder of balls with the properties of `ball` (position and
+/// radius ignored), platens with `platen` properties, and a lateral wall with
+/// `lateral` properties if `with_lateral`.
+Specimen lattice_specimen(Lattice lattice, double radius, double diameter, double height,
+                          const BallSpec &ball, const WallProps &platen, const WallProps &lateral,
+                          bool with_lateral);
+} // namespace dem

@@ -1,0 +1,89 @@
+// Walls: planes (loading platens) and a cylinder (lateral confinement).
+//
+// Walls are geometry plus a prescribed velocity (thesis §3.3.1, §5.3.1).  A
+// wall has its own contact properties; a ball-wall pair uses the ball's and
+// the wall's stiffnesses in series (eq. 3.17-3.18) and the smaller of the two
+// friction coefficients, exactly like a ball-ball pair.  Walls are rigid and
+// infinitely massive: they move as prescribed whatever force acts on them,
+// and the force the balls exert on each wall is recorded for stress
+// measurement and for the boundary-work term of the energy balance.
+//
+// A plane is infinite; its direction is its unit normal, pointing into the
+// region the balls occupy.  A cylinder confines balls to its inside; its
+// direction is its axis.  A wall can be disabled (the lateral wall is removed
+// before a uniaxial test, §5.3.4) without renumbering the others.
+#pragma once
+
+#include "contact.h"
+
+#include <string>
+#include <vector>
+
+namespace dem
+{
+struct WallProps
+{
+  double kn = 0;       ///< N/m, wall normal stiffness
+  double ks = 0;       ///< N/m, wall shear stiffness
+  double friction = 0; ///< -
+};
+
+enum class WallShape
+{
+  plane,
+  cylinder,
+};
+
+struct Wall
+{
+  std::string name;
+  WallShape shape = WallShape::plane;
+  Vec3 point = Vec3::Zero();        ///< m, a point on the plane / on the cylinder axis
+  Vec3 direction = Vec3::UnitZ();   ///< unit: plane normal into the balls / cylinder axis
+  double radius = 0;                ///< m, cylinder inner radius
+  Vec3 velocity = Vec3::Zero();     ///< m/s, translation of the wall
+  double radial_velocity = 0;       ///< m/s, cylinder radius rate (> 0 expanding)
+  WallProps props;
+  bool enabled = true;
+};
+
+using WallIndex = int;
+
+class WallSet
+{
+public:
+  WallIndex add(Wall w);
+  int size() const { return static_cast<int>(walls_.size()); }
+  Wall &operator[](WallIndex w) { return walls_[w]; }
+  const Wall &operator[](WallIndex w) const { return walls_[w]; }
+  WallIndex find(const std::string &name) const; ///< -1 if absent
+
+  /// Distance from point x to the wall surface, positive on the particle side.
+  double clearance(WallIndex w, const Vec3 &x) const;
+
+  /// Geometry of the contact of a ball (centre x, radius r, velocity v, spin
+  /// omega) with wall w.  The wall is the first entity.
+  ContactGeometry geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v,
+                           const Vec3 &omega) const;
+
+  /// Velocity of the surface of wall w at the point nearest to x [m/s].
+  Vec3 surface_velocity(WallIndex w, const Vec3 &x) const;
+
+  /// Removes or restores wall w; a removed wall forgets its contacts.
+  void set_enabled(WallIndex w, bool enabled);
+
+  /// Moves every wall by its velocity over dt.
+  void advance(double dt);
+
+  /// Per (wall, particle) contact history; resize_history() clears it.
+  void resize_history(Index particles);
+  ContactState &state(WallIndex w, Index p) { return history_[slot(w, p)]; }
+  const ContactState &state(WallIndex w, Index p) const { return history_[slot(w, p)]; }
+
+private:
+  std::size_t slot(WallIndex w, Index p) const { return static_cast<std::size_t>(w) * stride_ + p; }
+  std::vector<Wall> walls_;
+  std::vector<ContactState> history_;
+  std::size_t stride_ = 0;
+};
+} // namespace dem

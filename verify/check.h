@@ -1,0 +1,103 @@
+// Verification checks: requirement, reference, metric, tolerance, verdict.
+//
+// A check is one row of the registry (checks_registry.cpp): an id, one
+// sentence of requirement ("demvv shall ..."), its V&V category (thesis §2.5:
+// code verification, solution verification, calibration, validation), its
+// tolerance class (VERIFICATION.md: A algebraic, B time-discretised, C event,
+// D statistical), the reference it is measured against, and the function
+// that runs it.  The function returns metrics; each metric carries its
+// value, its tolerance and the reason for that tolerance.  A metric whose
+// value or reference is NaN or missing fails: nothing passes by default.
+//
+// `demvv verify` runs the registry and writes report.md and report.json; the
+// Catch2 tests run the same checks, so a test and a report can never
+// disagree.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace verify
+{
+enum class Category
+{
+  code_verification,
+  solution_verification,
+  calibration,
+  validation,
+};
+
+std::string_view category_name(Category c);
+
+struct Metric
+{
+  std::string name;       ///< what is measured, with its unit
+  double value = 0;       ///< measured
+  double tolerance = 0;   ///< pass when value <= tolerance (or >= for at_least)
+  bool at_least = false;  ///< pass when value >= tolerance instead
+  std::string reason;     ///< why this tolerance
+  bool pass = false;
+};
+
+/// |measured - expected| / |expected|, passing when <= tolerance; fails on
+/// NaN, infinity or a zero reference.
+Metric relative_error(std::string name, double measured, double expected, double tolerance, std::string reason);
+/// |measured - expected|, passing when <= tolerance; fails on NaN.
+Metric absolute_error(std::string name, double measured, double expected, double tolerance, std::string reason);
+/// value <= limit (or >= when at_least); fails on NaN.
+Metric bound(std::string name, double value, double limit, bool at_least, std::string reason);
+
+/// One level of a convergence study.
+struct ConvergenceRow
+{
+  double h = 0;      ///< step or mesh size
+  double error = 0;
+  double order = 0;  ///< observed order against the previous level (0 for the first)
+};
+
+struct ConvergenceTable
+{
+  std::string title;
+  std::string h_name;     ///< e.g. "dt [s]"
+  std::string error_name; ///< e.g. "max |u - u_exact| [m]"
+  double expected_order = 0;
+  std::vector<ConvergenceRow> rows;
+
+  /// Appends a level and computes its observed order from the previous one.
+  void add(double h, double error);
+  /// Observed order of the last level (0 if fewer than two levels).
+  double last_order() const;
+};
+
+struct CheckOutcome
+{
+  std::vector<Metric> metrics;
+  std::vector<ConvergenceTable> tables;
+  std::vector<std::string> notes;
+  bool pass() const;
+};
+
+struct CheckContext
+{
+  std::string cases_dir; ///< where the case decks are
+  bool quick = true;     ///< fewer levels / shorter runs
+};
+
+struct Check
+{
+  std::string_view id;
+  std::string_view title;
+  std::string_view requirement;
+  Category category;
+  char tolerance_class;
+  std::string_view reference;
+  CheckOutcome (*run)(const CheckContext &);
+};
+
+const std::vector<Check> &check_registry();
+const Check *find_check(std::string_view id);
+
+/// The case directory compiled in (the source tree's cases/).
+std::string default_cases_dir();
+} // namespace verify

@@ -1,0 +1,30 @@
+// Helpers shared by the check implementations (checks_*.cpp).
+#pragma once
+
+#include "check.h"
+#include "deck.h"
+#include "scene.h"
+#include "series.h"
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+/// Loads cases/<name>/case.prm with overrides and runs it in memory.
+SceneResult run_case(const CheckContext &ctx, const std::string &name,
+                     const std::vector<std::string> &overrides = {});
+/// Returns r, or throws (failing the check) if the run faulted or wrote nothing.
+SceneResult completed(const std::string &name, SceneResult r);
+Deck load_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides = {});
+
+/// First time at which `values` crosses `level` upwards, linearly
+/// interpolated between rows; NaN if it never does.
+double first_crossing(const std::vector<double> &time, const std::vector<double> &values, double level);
+
+/// Largest absolute value of a vector (NaN if empty).
+double max_abs(const std::vector<double> &v);
+
+/// Formats a number for notes.
+std::string num(double v);
+} // namespace verify

@@ -1,0 +1,82 @@
+#include "commands.h"
+
+#include "check.h"
+#include "deck.h"
+#include "output.h"
+#include "report.h"
+#include "scene.h"
+#include "uniaxial.h"
+
+#include <iostream>
+
+namespace verify
+{
+namespace
+{
+int report(const std::string &out_dir, const RunStatus &status)
+{
+  if (status.fault)
+  {
+    std::cerr << "demvv: " << status.diagnostic() << "; outputs up to that point are in " << out_dir << "\n";
+    return 3;
+  }
+  std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
+            << out_dir << "\n";
+  return 0;
+}
+
+int run_scene_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_scene(deck, o).status); }
+int run_uniaxial_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_uniaxial(deck, o).status); }
+
+struct Runner
+{
+  const char *kind;
+  int (*run)(const Deck &, const RunOptions &);
+};
+
+const Runner runners[] = {
+  {"scene", &run_scene_deck},
+  {"uniaxial", &run_uniaxial_deck},
+};
+} // namespace
+
+int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
+{
+  const Deck deck = Deck::from_file(deck_path, overrides);
+  RunOptions o = options;
+  if (o.out_dir.empty())
+    o.out_dir = "runs/" + deck.name();
+  for (const Runner &r : runners)
+    if (deck.kind() == r.kind)
+      return r.run(deck, o);
+  throw DeckError(deck_path + ": decks of kind '" + deck.kind() + "' cannot be run yet");
+}
+
+int command_defaults(const std::string &kind)
+{
+  std::cout << Deck::defaults(kind).documented();
+  return 0;
+}
+
+int command_verify(bool full, const std::string &only, const std::string &out_dir, const std::string &cases_dir,
+                   int threads)
+{
+  const int used = apply_threads({"", threads, false});
+  CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full};
+  const std::vector<CheckRecord> records = run_checks(ctx, only, true);
+  if (records.empty())
+    throw DeckError("--only '" + only + "': no check id or title contains it");
+  nlohmann::json prov = provenance(used, 0, "");
+  prov["mode"] = full ? "full" : "quick";
+  prov["cases_dir"] = ctx.cases_dir;
+  make_directories(out_dir);
+  write_atomically(out_dir + "/report.json", report_json(records, prov).dump(2) + "\n");
+  write_atomically(out_dir + "/report.md", report_markdown(records, prov));
+  std::size_t failed = 0;
+  for (const CheckRecord &r : records)
+    failed += r.pass() ? 0 : 1;
+  std::cerr << "demvv: " << records.size() - failed << " of " << records.size() << " checks pass; report in "
+            << out_dir << "/report.md\n";
+  return failed ? 1 : 0;
+}
+} // namespace verify

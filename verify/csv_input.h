@@ -1,0 +1,37 @@
+// Reading numeric CSV tables named by decks (particle lists, bond lists).
+//
+// The first non-comment line is the header; every later non-empty line must
+// have one number per column.  Lines starting with '#' are comments.  Any
+// problem is a DeckError naming the file, the line and the column.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+class CsvTable
+{
+public:
+  static CsvTable read(const std::string &path);
+
+  const std::string &path() const { return path_; }
+  std::size_t rows() const { return rows_.size(); }
+  bool has(const std::string &column) const { return index(column) >= 0; }
+  /// Value of a column in row r; `fallback` if the column is absent.
+  double get(std::size_t r, const std::string &column, double fallback) const;
+  /// Value of a required column (DeckError if the table lacks it).
+  double get(std::size_t r, const std::string &column) const;
+  /// Line of the file row r came from (for messages).
+  int line(std::size_t r) const { return lines_[r]; }
+  /// Throws a DeckError about row r.
+  [[noreturn]] void fail(std::size_t r, const std::string &column, const std::string &expected) const;
+
+private:
+  int index(const std::string &column) const;
+  std::string path_;
+  std::vector<std::string> header_;
+  std::vector<std::vector<double>> rows_;
+  std::vector<int> lines_;
+};
+} // namespace verify

@@ -1,0 +1,116 @@
+// Decks: input files that declare themselves (deal.II step-44 pattern).
+//
+// A deck is a deal.II ParameterHandler file (.prm) or the same tree in JSON.
+// Its top-level entry `kind` selects a schema (deck_kinds.cpp); every entry
+// of the schema is declared with a default, a pattern, a unit and a help
+// string, so `demvv defaults KIND` prints a complete, documented deck and a
+// run writes the resolved deck (every default filled in) to deck.prm.
+//
+// Errors are one line naming the file (and line), the key, the value and
+// what was expected; the caller turns DeckError into exit code 2.  The
+// parser is demvv's own (so that it can say all of that); deal.II stores
+// and prints the values and its Patterns check them.
+//
+// This header does not include deal.II: only deck.cpp sees it.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace verify
+{
+/// Bad input: one line, exit code 2.
+class DeckError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How a kind declares its entries (implemented over deal.II in deck.cpp).
+class DeckSchema
+{
+public:
+  virtual ~DeckSchema() = default;
+  virtual void enter(const std::string &section) = 0;
+  virtual void leave() = 0;
+  /// A real number in [min, max] (or (min, max] with min_exclusive).
+  virtual void real(const std::string &name, double value, double min, double max,
+                    const std::string &unit, const std::string &help, bool min_exclusive = false) = 0;
+  virtual void integer(const std::string &name, long value, long min, long max,
+                       const std::string &help) = 0;
+  virtual void choice(const std::string &name, const std::string &value,
+                      const std::vector<std::string> &options, const std::string &help) = 0;
+  virtual void flag(const std::string &name, bool value, const std::string &help) = 0;
+  /// Free text (titles, file names); `unit` documents what it holds.
+  virtual void text(const std::string &name, const std::string &value, const std::string &help) = 0;
+  /// Three comma-separated reals.
+  virtual void vector3(const std::string &name, const std::string &value, const std::string &unit,
+                       const std::string &help) = 0;
+  /// A comma-separated list of reals (possibly empty) of length in [min_len, max_len].
+  virtual void real_list(const std::string &name, const std::string &value, unsigned min_len,
+                         unsigned max_len, const std::string &unit, const std::string &help) = 0;
+};
+
+/// One deck kind: its name, what it is for, and its schema.
+struct DeckKind
+{
+  std::string_view name;
+  std::string_view summary;
+  void (*declare)(DeckSchema &);
+};
+
+/// The kinds a deck may have (deck_kinds.cpp).
+const std::vector<DeckKind> &deck_kinds();
+
+class Deck
+{
+public:
+  /// Reads a deck file and applies overrides of the form "section/key=value".
+  static Deck from_file(const std::string &path, const std::vector<std::string> &overrides = {});
+  /// A deck of the given kind with every default.
+  static Deck defaults(const std::string &kind);
+
+  Deck(Deck &&) noexcept;
+  Deck &operator=(Deck &&) noexcept;
+  ~Deck();
+
+  const std::string &kind() const;
+  /// The deck file ("" for a defaults deck).
+  const std::string &path() const;
+  /// Directory relative file names in the deck are resolved against.
+  std::string directory() const;
+  /// A short name for run directories: the file stem, or the parent
+  /// directory's name when the file is called case.prm.
+  std::string name() const;
+
+  /// Sets an entry as --set does ("section/key", value), with validation.
+  void set(const std::string &key, const std::string &value);
+
+  std::string text(const std::string &key) const;
+  double real(const std::string &key) const;
+  long integer(const std::string &key) const;
+  bool flag(const std::string &key) const;
+  std::array<double, 3> vector3(const std::string &key) const;
+  std::vector<double> real_list(const std::string &key) const;
+  /// A relative file name from the deck resolved against directory().
+  std::string file(const std::string &key) const;
+
+  /// Throws a DeckError naming this deck, the key and its value.
+  [[noreturn]] void fail(const std::string &key, const std::string &expected) const;
+
+  /// The resolved deck in .prm form (every entry, declaration order).
+  std::string resolved() const;
+  /// The documented defaults in .prm form (help, unit, allowed values).
+  std::string documented() const;
+
+  struct Impl;
+
+private:
+  explicit Deck(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+} // namespace verify

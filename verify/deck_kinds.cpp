@@ -1,0 +1,17 @@
+// The deck-kind registry: one row per kind.  To add a kind, write its
+// declare_* and run_* functions and add one row here and one in commands.cpp.
+#include "deck.h"
+#include "scene.h"
+#include "uniaxial.h"
+
+namespace verify
+{
+const std::vector<DeckKind> &deck_kinds()
+{
+  static const std::vector<DeckKind> kinds = {
+    {"scene", "explicit particles, walls, bonds and prescribed motions (two-ball tests, chains)", &declare_scene},
+    {"uniaxial", "constant-strain-rate compression of a bonded cylinder between platens", &declare_uniaxial},
+  };
+  return kinds;
+}
+} // namespace verify

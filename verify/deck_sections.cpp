@@ -1,0 +1,138 @@
+#include "deck_sections.h"
+
+#include <limits>
+
+namespace verify
+{
+namespace
+{
+constexpr double inf = std::numeric_limits<double>::infinity();
+}
+
+void declare_contact_law(DeckSchema &s)
+{
+  std::vector<std::string> names;
+  std::string help = "Ball-ball contact law, a keyword of the law registry:";
+  for (const auto &e : dem::law_registry())
+  {
+    names.emplace_back(e.keyword);
+    help += " '" + std::string(e.keyword) + "': " + std::string(e.summary) + ".";
+  }
+  s.enter("contact law");
+  s.choice("law", names.front(), names, help);
+  s.leave();
+}
+
+std::unique_ptr<dem::ContactModel> read_contact_law(const Deck &d)
+{
+  return dem::make_contact_model(d.text("contact law/law"), dem::LawParameters{});
+}
+
+void declare_motion(DeckSchema &s, const std::string &default_gravity, double default_damping)
+{
+  s.enter("motion");
+  s.vector3("gravity", default_gravity, "m/s^2", "Gravitational acceleration.");
+  s.real("local damping", default_damping, 0, 1, "-",
+         "PFC local non-viscous damping coefficient alpha (0 = undamped; 0.7 is PFC's default). "
+         "Must be < 1.");
+  s.real("time step safety", 0.8, 0, 1, "-",
+         "Fraction of the critical time step bound used by the automatic step.", true);
+  s.real("fixed time step", 0, 0, inf, "s", "Fixed time step; 0 selects the automatic step.");
+  s.choice("unstable fixed step", "stop", {"stop", "run"},
+           "What to do when a fixed step exceeds the critical step bound: stop with exit code 3, "
+           "or run anyway (to demonstrate instability).");
+  s.real("neighbour skin", 0.25, 0, inf, "-",
+         "Verlet skin of the neighbour list as a fraction of the largest radius.", true);
+  s.leave();
+}
+
+dem::SimulationSettings read_motion(const Deck &d)
+{
+  dem::SimulationSettings m;
+  m.gravity = read_vec3(d, "motion/gravity");
+  m.local_damping = d.real("motion/local damping");
+  if (m.local_damping >= 1)
+    d.fail("motion/local damping", "expected a number < 1 (alpha = 1 would cancel every force)");
+  m.time_step_safety = d.real("motion/time step safety");
+  m.fixed_time_step = d.real("motion/fixed time step");
+  m.allow_unstable_step = d.text("motion/unstable fixed step") == "run";
+  m.skin_fraction = d.real("motion/neighbour skin");
+  return m;
+}
+
+void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes)
+{
+  s.enter("bonds");
+  s.choice("install", modes.front(), modes,
+           "Which pairs get PFC contact bonds at the start: 'none', 'touching' (every touching "
+           "pair), or 'list' (the pairs of the list file).");
+  s.text("list file", "",
+         "CSV of bonded pairs for install = list: columns first,second (ball indices from 0) and "
+         "optionally normal_strength_n, shear_strength_n [N].");
+  s.real("normal strength", 31.3, 0, inf, "N",
+         "Mean tensile strength phi_n of a bond, a force (thesis eq. 6.1: phi = 4 sigma R^2).", true);
+  s.real("shear strength", 31.3, 0, inf, "N", "Mean shear strength phi_s of a bond, a force.", true);
+  s.real("strength cov", 0, 0, 10, "-",
+         "Coefficient of variation of both strengths (Gaussian; thesis §6.5 uses 0, 0.25, 0.5).");
+  s.real("strength floor", 0.01, 0, 1, "-",
+         "Draws below this fraction of the mean are raised to it and counted.", true);
+  s.real("removed fraction", 0, 0, 1, "-",
+         "Fraction of installed bonds removed at random to leave frictional contacts (thesis §7.4).");
+  s.real("touch tolerance", 1e-6, 0, 1, "-",
+         "Largest gap, relative to the smaller radius, at which a pair counts as touching.");
+  s.integer("seed", 1, 0, std::numeric_limits<int>::max(), "Seed of the strength and removal draws.");
+  s.leave();
+}
+
+dem::BondSettings read_bond_settings(const Deck &d)
+{
+  dem::BondSettings b;
+  b.normal_strength = d.real("bonds/normal strength");
+  b.shear_strength = d.real("bonds/shear strength");
+  b.cov = d.real("bonds/strength cov");
+  b.floor_fraction = d.real("bonds/strength floor");
+  b.removed_fraction = d.real("bonds/removed fraction");
+  b.touch_tolerance = d.real("bonds/touch tolerance");
+  b.seed = static_cast<std::uint64_t>(d.integer("bonds/seed"));
+  return b;
+}
+
+void declare_ball_properties(DeckSchema &s)
+{
+  s.enter("balls");
+  s.real("density", 2650, 0, inf, "kg/m^3", "Density of every ball (sand: 2650).", true);
+  s.real("normal stiffness", 1.2e7, 0, inf, "N/m",
+         "Normal stiffness kn of every ball; a pair has kn_A kn_B / (kn_A + kn_B) (eq. 3.17).", true);
+  s.real("shear stiffness", 1.2e6, 0, inf, "N/m",
+         "Shear stiffness ks of every ball; a pair has ks in series (eq. 3.18).");
+  s.real("friction", 0.5, 0, inf, "-", "Friction coefficient of every ball; a pair uses the smaller.");
+  s.leave();
+}
+
+void apply_ball_properties(const Deck &d, dem::BallSpec &b)
+{
+  b.density = d.real("balls/density");
+  b.kn = d.real("balls/normal stiffness");
+  b.ks = d.real("balls/shear stiffness");
+  b.friction = d.real("balls/friction");
+}
+
+void declare_wall_properties(DeckSchema &s, double kn, double ks, double friction)
+{
+  s.real("normal stiffness", kn, 0, inf, "N/m", "Normal stiffness of the wall (in series with the ball's).", true);
+  s.real("shear stiffness", ks, 0, inf, "N/m", "Shear stiffness of the wall (in series with the ball's).");
+  s.real("friction", friction, 0, inf, "-", "Friction coefficient of the wall (a pair uses the smaller).");
+}
+
+dem::WallProps read_wall_properties(const Deck &d, const std::string &section)
+{
+  return {d.real(section + "/normal stiffness"), d.real(section + "/shear stiffness"),
+          d.real(section + "/friction")};
+}
+
+dem::Vec3 read_vec3(const Deck &d, const std::string &key)
+{
+  const auto v = d.vector3(key);
+  return {v[0], v[1], v[2]};
+}
+} // namespace verify

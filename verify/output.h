@@ -1,0 +1,70 @@
+// Run outputs: files that stay valid whatever happens to the run.
+//
+//  - write_atomically(): whole files (summary.json, deck.prm, ParaView
+//    frames) are written to a temporary name and renamed, so a reader sees
+//    the old file or the new one, never half of one.
+//  - CsvSeries: time series (series.csv, particles.csv, ...) are appended one
+//    complete row per write(2) call and flushed at once, so an interrupted
+//    run leaves every row written so far, each row whole.
+//  - Progress: a throttled one-line progress display on stderr, only when
+//    stderr is a terminal.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace verify
+{
+/// Writes `content` to `path` via a temporary file and rename(2).
+void write_atomically(const std::string &path, const std::string &content);
+
+/// Creates a directory and its parents; throws DeckError-free std::runtime_error on failure.
+void make_directories(const std::string &path);
+
+class CsvSeries
+{
+public:
+  /// Creates (truncates) the file and writes a comment line and the header.
+  CsvSeries(const std::string &path, const std::string &comment, const std::vector<std::string> &columns);
+  ~CsvSeries();
+  CsvSeries(const CsvSeries &) = delete;
+  CsvSeries &operator=(const CsvSeries &) = delete;
+
+  /// Appends one row (as many values as columns), flushed.
+  void write(const std::vector<double> &row);
+  std::size_t columns() const { return columns_; }
+
+private:
+  std::FILE *file_ = nullptr;
+  std::size_t columns_;
+  std::string path_;
+  std::string buffer_;
+};
+
+class Progress
+{
+public:
+  explicit Progress(std::string label);
+  /// fraction in [0, 1]; the text follows the percentage.
+  void update(double fraction, const std::string &text);
+  void finish();
+
+private:
+  std::string label_;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+/// Provenance of a run: version, git SHA, compiler, flags, threads, seed, input.
+nlohmann::json provenance(int threads, long long seed, const std::string &deck_text);
+
+/// FNV-1a 64-bit hash of a text, as 16 hex digits (identifies inputs; not cryptographic).
+std::string fnv1a_hex(const std::string &text);
+
+/// Reads a whole file; throws std::runtime_error if it cannot.
+std::string read_file(const std::string &path);
+} // namespace verify
