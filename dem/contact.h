@@ -62,13 +62,16 @@ struct ContactState
   bool touching = false;           ///< carried a force at the last update
 };
 
-/// Geometry of a contact at time t, computed once per step.
+/// Geometry of a contact at time t, computed once per step, with the
+/// velocities of the interval (t - dt, t) that the centred-difference scheme
+/// stores (eq. 3.8).
 struct ContactGeometry
 {
-  Vec3 normal;              ///< unit, first -> second
+  Vec3 normal;              ///< unit, first -> second, at t
   double overlap;           ///< m, U > 0 when interpenetrating
-  Vec3 relative_velocity;   ///< m/s, second relative to first, at the contact point
-  double twist_rate;        ///< rad/s, mean spin of the two entities about the normal
+  Vec3 velocity_difference; ///< m/s, centre velocity of second minus first (wall: its surface velocity)
+  Vec3 spin_first;          ///< rad/s (zero for walls)
+  Vec3 spin_second;         ///< rad/s
   double arm_first;         ///< m, centre of first to contact point (0 for walls)
   double arm_second;        ///< m, centre of second to contact point
 };

@@ -39,6 +39,10 @@ public:
 
   /// Elastic energy stored in all ball-ball contacts [J].
   virtual double stored_energy(const ContactTable &table) const = 0;
+
+  /// Tangent normal and shear stiffness of a contact [N/m] (kn, ks of the
+  /// result; friction unused), as the stability bound sees them.
+  virtual ContactParams tangent_stiffness(const Contact &c) const = 0;
 };
 
 /// Geometry of the ball-ball contact (i, j) at the current positions.
@@ -51,10 +55,9 @@ inline ContactGeometry sphere_sphere(const ParticleStore &p, Index i, Index j)
   g.overlap = p.radius[i] + p.radius[j] - dist;
   g.arm_first = p.radius[i] - 0.5 * g.overlap;
   g.arm_second = p.radius[j] - 0.5 * g.overlap;
-  const Vec3 vi = p.velocity[i] + p.spin[i].cross(g.arm_first * g.normal);
-  const Vec3 vj = p.velocity[j] + p.spin[j].cross(-g.arm_second * g.normal);
-  g.relative_velocity = vj - vi;
-  g.twist_rate = 0.5 * (p.spin[i] + p.spin[j]).dot(g.normal);
+  g.velocity_difference = p.velocity[j] - p.velocity[i];
+  g.spin_first = p.spin[i];
+  g.spin_second = p.spin[j];
   return g;
 }
 
@@ -108,8 +111,9 @@ public:
       const double kn = law_.normal_stiffness(k.params), ks = law_.shear_stiffness(k.params);
       const double bi = shear_mobility(p.inv_mass[i], p.inv_inertia[i], g.arm_first);
       const double bj = shear_mobility(p.inv_mass[j], p.inv_inertia[j], g.arm_second);
-      load.bound_first = stability_row_term(kn, ks, p.inv_mass[i], bi, p.inv_mass[j], bj);
-      load.bound_second = stability_row_term(kn, ks, p.inv_mass[j], bj, p.inv_mass[i], bi);
+      const double sqrt_ww = std::sqrt(p.inv_mass[i] * p.inv_mass[j]), sqrt_bb = std::sqrt(bi * bj);
+      load.bound_first = stability_row_term(kn, ks, p.inv_mass[i], bi, sqrt_ww, sqrt_bb);
+      load.bound_second = stability_row_term(kn, ks, p.inv_mass[j], bj, sqrt_ww, sqrt_bb);
     }
     return breaks;
   }
@@ -138,6 +142,11 @@ public:
         e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, history_[c]);
     }
     return e;
+  }
+
+  ContactParams tangent_stiffness(const Contact &c) const override
+  {
+    return {law_.normal_stiffness(c.params), law_.shear_stiffness(c.params), 0};
   }
 
 private:

@@ -3,7 +3,14 @@
 //   1. a contact exists when the entities overlap (U > 0) or a bond joins
 //      them; otherwise its history is cleared (thesis §3.3.2: a new contact
 //      starts with zero shear force);
-//   2. the old shear force is rotated with the contact plane;
+//   2. the old shear force is rotated with the contact plane, and the shear
+//      displacement increment is the relative velocity of the contact points
+//      times dt, with the lever arms taken along the mean of the old and new
+//      normals: velocities live at t - dt/2, so the geometry they act on is
+//      taken there too.  With the new normal instead, a rigid rotation by
+//      dtheta per step would create a spurious shear increment
+//      d dtheta^2 / 2 per step (first-order error); with the mean it is
+//      O(dtheta^3) (second order, VERIFICATION.md item 4);
 //   3. the law gives trial normal and shear forces (law_*.h);
 //   4. the PFC3D contact bond and slip rules of thesis §3.4.2 apply:
 //        bonded:   tension allowed; if -F_n >= phi_n the bond breaks and both
@@ -47,11 +54,16 @@ ResolvedContact resolve_contact(const Law &law, const ContactParams &params, Con
   }
 
   const bool new_contact = state.normal.isZero(0);
+  const Vec3 mid_normal = new_contact ? g.normal : Vec3(0.5 * (state.normal + g.normal));
+  const Vec3 relative_velocity = g.velocity_difference - g.spin_second.cross(g.arm_second * mid_normal) -
+                                 g.spin_first.cross(g.arm_first * mid_normal);
   Vec3 shear = state.shear_force;
   if (!new_contact)
-    shear = rotate_with_contact_plane(shear, state.normal, g.normal, g.twist_rate * dt);
-  const Vec3 shear_increment =
-    (g.relative_velocity - g.relative_velocity.dot(g.normal) * g.normal) * dt;
+  {
+    const double twist = 0.5 * (g.spin_first + g.spin_second).dot(mid_normal) * dt;
+    shear = rotate_with_contact_plane(shear, state.normal, g.normal, twist);
+  }
+  const Vec3 shear_increment = (relative_velocity - relative_velocity.dot(g.normal) * g.normal) * dt;
 
   double fn = law.normal_force(params, g.overlap, history, dt);
   shear = law.shear_force(params, shear, shear_increment, history, dt);

@@ -126,8 +126,8 @@ void Simulation::gather_forces()
     // A ball without contacts still gets the step of one contact with its
     // own stiffness, so that the first impact is resolved; real mass and
     // inertia are used so that a scene of held balls still has a step.
-    const double alone = (P.kn[p] + P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p])) /
-                         P.mass[p];
+    const double alone =
+      std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p])) / P.mass[p];
     P.force[p] = f;
     P.torque[p] = t;
     row_bound_[p] = bound;

@@ -4,37 +4,45 @@
 // dt <= 2 / omega_max, omega_max^2 the largest eigenvalue of M^-1 K.  The
 // thesis's eq. 3.11 (dt = sqrt(m/k)) is that limit for a chain; demvv instead
 // bounds omega_max^2 for any assembly, rotations included, by the block
-// Gershgorin theorem (Feingold & Varga 1962) applied to M^-1/2 K M^-1/2 with
-// one 6x6 block per ball.  For a contact with normal stiffness K^n, shear
-// stiffness K^s, contact arms a_A, a_B (the normal part does not couple to
-// rotation for spheres):
+// Gershgorin theorem (Feingold & Varga 1962) applied to A = M^-1/2 K M^-1/2
+// with one 6x6 block per ball: every eigenvalue of A is at most
+// max_A sum_B ||A_AB||.  A contact between balls A and B with normal and
+// shear stiffness K^n, K^s and arms a_A, a_B adds to the blocks
 //
-//   ||block(A,A)|| <= K^n w_A + K^s b_A,
-//   ||block(A,B)|| <= K^n sqrt(w_A w_B) + K^s sqrt(b_A b_B)
-//                  <= K^n (w_A + w_B)/2 + K^s (b_A + b_B)/2,
+//   A_AA += K^n w_A (n n^T on translation) + K^s (P B_A)^T (P B_A),
+//   A_AB += ...,   with w = 1/m, b = 1/m + a^2/I (zero where motion is held).
 //
-// with w = 1/m and b = 1/m + a^2/I (zero where the motion is held).  The
-// row bound of ball A is the sum of both over its contacts; omega_max^2 is
-// at most the largest row bound, so
+// For spheres the normal part acts only on the translation along n and the
+// shear part is orthogonal to it, so the two parts add in orthogonal
+// subspaces and their norms combine by max, not by sum:
 //
-//   dt_crit >= 2 / sqrt(max_A sum_c [K^n (1.5 w_A + 0.5 w_B) + K^s (1.5 b_A + 0.5 b_B)]).
+//   ||contact part of A_AA|| = max(K^n w_A, K^s b_A),
+//   ||A_AB||                <= max(K^n sqrt(w_A w_B), K^s sqrt(b_A b_B)).
 //
-// The bound is exact for one ball against a wall with ks = 0 (row term
-// K^n/m) and for two equal balls; it is conservative otherwise.  The engine
-// uses a safety fraction (default 0.8) of it.
+// The row bound of ball A is the sum of both over its contacts (a wall is a
+// partner with w = b = 0), and
+//
+//   dt_crit >= 2 / sqrt(max_A row_A).
+//
+// The bound is exact for one ball on a spring to a fixed support and for a
+// free pair of equal balls in normal motion; it is conservative otherwise
+// (exact_stability_limit() measures by how much on small assemblies).  The
+// engine uses a safety fraction (default 0.8) of it.
 #pragma once
 
 #include "types.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dem
 {
 /// Row term of ball A for one contact (see header note), 1/s^2.
-inline double stability_row_term(double kn, double ks, double w_self, double b_self,
-                                 double w_other, double b_other)
+/// sqrt_ww = sqrt(w_A w_B), sqrt_bb = sqrt(b_A b_B).
+inline double stability_row_term(double kn, double ks, double w_self, double b_self, double sqrt_ww,
+                                 double sqrt_bb)
 {
-  return kn * (1.5 * w_self + 0.5 * w_other) + ks * (1.5 * b_self + 0.5 * b_other);
+  return std::max(kn * w_self, ks * b_self) + std::max(kn * sqrt_ww, ks * sqrt_bb);
 }
 
 /// b = 1/m + a^2/I of one ball at one contact.
@@ -48,4 +56,13 @@ inline double critical_step(double row_bound)
 {
   return row_bound > 0 ? 2.0 / std::sqrt(row_bound) : infinity;
 }
+class Simulation;
+
+/// Largest eigenvalue of M^-1 K for the force-carrying contacts of a
+/// simulation, from a dense eigen-solve (6 dof per ball; held dofs removed).
+/// For verification on small assemblies only: O(N^3).
+double exact_max_eigenvalue(const Simulation &sim);
+
+/// 2 / sqrt(exact_max_eigenvalue): the exact stability limit [s].
+double exact_stability_limit(const Simulation &sim);
 } // namespace dem

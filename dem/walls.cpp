@@ -65,9 +65,9 @@ ContactGeometry WallSet::geometry(WallIndex w, const Vec3 &x, double r, const Ve
   g.overlap = r - gap;
   g.arm_first = 0;
   g.arm_second = r - 0.5 * g.overlap;
-  const Vec3 contact_velocity = v + omega.cross(-g.arm_second * g.normal);
-  g.relative_velocity = contact_velocity - wall_velocity;
-  g.twist_rate = 0.5 * omega.dot(g.normal);
+  g.velocity_difference = v - wall_velocity;
+  g.spin_first = Vec3::Zero();
+  g.spin_second = omega;
   return g;
 }
 
