@@ -22,6 +22,17 @@
 
 namespace dem
 {
+/// Stability row terms of a ball-ball contact (stability.h) whose arms are
+/// at most fi R_i and fj R_j.
+DEM_HOT_INLINE StabilityTerms contact_stability_terms(const ParticleStore &p, Index i, Index j, double kn,
+                                                     double ks, double fi, double fj)
+{
+  const double sbi = fi * p.sqrt_shear_mobility[i], sbj = fj * p.sqrt_shear_mobility[j];
+  const double sqrt_ww = p.sqrt_inv_mass[i] * p.sqrt_inv_mass[j], sqrt_bb = sbi * sbj;
+  return {stability_row_term(kn, ks, p.inv_mass[i], sbi * sbi, sqrt_ww, sqrt_bb),
+          stability_row_term(kn, ks, p.inv_mass[j], sbj * sbj, sqrt_ww, sqrt_bb)};
+}
+
 class ContactModel
 {
 public:
@@ -43,15 +54,26 @@ public:
   /// Tangent normal and shear stiffness of a contact [N/m] (kn, ks of the
   /// result; friction unused), as the stability bound sees them.
   virtual ContactParams tangent_stiffness(const Contact &c) const = 0;
+
+  /// Recomputes every contact's compressive stability terms (after the
+  /// table or the balls' masses changed).
+  void update_stability_terms(const ParticleStore &p, ContactTable &table) const
+  {
+    for (Contact &c : table.entries())
+    {
+      const ContactParams k = tangent_stiffness(c);
+      c.stability = contact_stability_terms(p, c.first, c.second, k.kn, k.ks, 1.0, 1.0);
+    }
+  }
 };
 
 /// Geometry of the ball-ball contact (i, j) at the current positions.
-inline ContactGeometry sphere_sphere(const ParticleStore &p, Index i, Index j)
+DEM_HOT_INLINE ContactGeometry sphere_sphere(const ParticleStore &p, Index i, Index j)
 {
   ContactGeometry g;
   const Vec3 d = p.position[j] - p.position[i];
   const double dist = d.norm();
-  g.normal = dist > 0 ? Vec3(d / dist) : Vec3::UnitX();
+  g.normal = dist > 0 ? Vec3(d * (1.0 / dist)) : Vec3::UnitX();
   g.overlap = p.radius[i] + p.radius[j] - dist;
   g.arm_first = p.radius[i] - 0.5 * g.overlap;
   g.arm_second = p.radius[j] - 0.5 * g.overlap;
@@ -104,16 +126,19 @@ public:
         continue;
       }
       load.broke = r.broke;
-      const Vec3 lever = g.normal.cross(k.state.shear_force);
       load.force = r.force;
-      load.torque_first = -g.arm_first * lever;
-      load.torque_second = -g.arm_second * lever;
-      const double kn = law_.normal_stiffness(k.params), ks = law_.shear_stiffness(k.params);
-      const double bi = shear_mobility(p.inv_mass[i], p.inv_inertia[i], g.arm_first);
-      const double bj = shear_mobility(p.inv_mass[j], p.inv_inertia[j], g.arm_second);
-      const double sqrt_ww = std::sqrt(p.inv_mass[i] * p.inv_mass[j]), sqrt_bb = std::sqrt(bi * bj);
-      load.bound_first = stability_row_term(kn, ks, p.inv_mass[i], bi, sqrt_ww, sqrt_bb);
-      load.bound_second = stability_row_term(kn, ks, p.inv_mass[j], bj, sqrt_ww, sqrt_bb);
+      load.lever = cross(g.normal, k.state.shear_force);
+      load.arm_first = g.arm_first;
+      load.arm_second = g.arm_second;
+      // In compression the arms are at most the radii and the precomputed
+      // terms hold; a bonded pair in tension has longer arms.
+      StabilityTerms bound = k.stability;
+      if (g.overlap < 0)
+        bound = contact_stability_terms(p, i, j, law_.normal_stiffness(k.params), law_.shear_stiffness(k.params),
+                                        arm_factor(g.arm_first, p.inv_radius[i]),
+                                        arm_factor(g.arm_second, p.inv_radius[j]));
+      load.bound_first = bound.first;
+      load.bound_second = bound.second;
     }
     return breaks;
   }

@@ -37,7 +37,7 @@ struct ResolvedContact
 };
 
 template <class Law>
-ResolvedContact resolve_contact(const Law &law, const ContactParams &params, ContactBond &bond,
+DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactParams &params, ContactBond &bond,
                                 ContactState &state, typename Law::History &history,
                                 const ContactGeometry &g, double dt)
 {
@@ -53,10 +53,12 @@ ResolvedContact resolve_contact(const Law &law, const ContactParams &params, Con
     return out;
   }
 
-  const bool new_contact = state.normal.isZero(0);
+  const bool new_contact = !state.touching;
   const Vec3 mid_normal = new_contact ? g.normal : Vec3(0.5 * (state.normal + g.normal));
-  const Vec3 relative_velocity = g.velocity_difference - g.spin_second.cross(g.arm_second * mid_normal) -
-                                 g.spin_first.cross(g.arm_first * mid_normal);
+  // Contact-point velocities: v + omega x (arm n) for the first entity and
+  // v - omega x (arm n) for the second, along the mean normal.
+  const Vec3 relative_velocity =
+    g.velocity_difference - cross(g.arm_second * g.spin_second + g.arm_first * g.spin_first, mid_normal);
   Vec3 shear = state.shear_force;
   if (!new_contact)
   {
@@ -90,7 +92,7 @@ ResolvedContact resolve_contact(const Law &law, const ContactParams &params, Con
       fn = 0;
       shear.setZero();
     }
-    else if (shear.norm() >= bond.shear_strength)
+    else if (shear.squaredNorm() >= bond.shear_strength * bond.shear_strength)
     {
       const double before = law.stored_energy(params, fn, shear, history);
       bond.intact = false;

@@ -61,6 +61,7 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
   }
   contacts_.swap(scratch_);
   rebuild_adjacency(particles.size());
+  changed_ = true;
 }
 
 Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
@@ -82,6 +83,7 @@ Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(contacts_.size()); ++k)
       origin_[k] = k < pos ? k : (k == pos ? -1 : k - 1);
     rebuild_adjacency(particles.size());
+    changed_ = true;
     it = contacts_.begin() + pos;
   }
   return *it;

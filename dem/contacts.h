@@ -23,6 +23,15 @@
 
 namespace dem
 {
+/// Stability-bound row terms of a contact while its arms are at most the
+/// radii (any compressive contact), precomputed because they depend only on
+/// constants of the pair (stability.h); tension recomputes them.
+struct StabilityTerms
+{
+  double first = 0;  ///< 1/s^2
+  double second = 0; ///< 1/s^2
+};
+
 struct Contact
 {
   Index first = 0;
@@ -30,17 +39,25 @@ struct Contact
   ContactParams params;
   ContactBond bond;
   ContactState state;
+  StabilityTerms stability;
 };
 
-/// What one contact contributes to its two balls at this step.
+/// What one contact contributes to its two balls at this step.  Torques
+/// follow from the lever: the contact point lies at arm * n from the first
+/// centre and -arm * n from the second, so T_first = -arm_first (n x F_s)
+/// and T_second = -arm_second (n x F_s).
 struct ContactLoad
 {
   Vec3 force = Vec3::Zero();         ///< N, on the second ball (the first gets -force)
-  Vec3 torque_first = Vec3::Zero();  ///< N m
-  Vec3 torque_second = Vec3::Zero(); ///< N m
+  Vec3 lever = Vec3::Zero();         ///< N, n x F_s
+  double arm_first = 0;              ///< m
+  double arm_second = 0;             ///< m
   double bound_first = 0;            ///< 1/s^2, stability-bound row term of the first ball
   double bound_second = 0;           ///< 1/s^2, same for the second ball
   BreakMode broke = BreakMode::none; ///< the bond broke at this step
+
+  Vec3 torque_first() const { return -arm_first * lever; }
+  Vec3 torque_second() const { return -arm_second * lever; }
 };
 
 /// Energy carried away by contacts that left the table.
@@ -85,6 +102,15 @@ public:
 
   const RetiredContactEnergy &retired() const { return retired_; }
 
+  /// True once after entries were added or the table rebuilt: pair
+  /// constants that depend on the balls (stability terms) must be refreshed.
+  bool take_changed()
+  {
+    const bool c = changed_;
+    changed_ = false;
+    return c;
+  }
+
 private:
   void rebuild_adjacency(Index particles);
   void retire(const Contact &c);
@@ -94,5 +120,6 @@ private:
   std::vector<std::ptrdiff_t> origin_;
   std::vector<std::size_t> first_start_, second_start_, second_list_, scratch_positions_;
   RetiredContactEnergy retired_;
+  bool changed_ = false;
 };
 } // namespace dem

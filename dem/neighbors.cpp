@@ -17,16 +17,13 @@ bool within(const ParticleStore &p, Index i, Index j, double skin)
 
 bool NeighborList::stale(const ParticleStore &particles) const
 {
-  if (reference_.size() != static_cast<std::size_t>(particles.size()))
-    return true;
-  return !std::equal(reference_radius_.begin(), reference_radius_.end(), particles.radius.begin());
+  return reference_.size() != static_cast<std::size_t>(particles.size());
 }
 
 void NeighborList::rebuild(const ParticleStore &particles)
 {
   const Index n = particles.size();
   reference_ = particles.position;
-  reference_radius_ = particles.radius;
   quarter_skin_sq_ = 0.25 * skin_ * skin_;
   pairs_.clear();
   ++rebuilds_;

@@ -36,8 +36,9 @@ public:
     return (x - reference_[p]).squaredNorm() > quarter_skin_sq_;
   }
 
-  /// True when the list must be rebuilt before it can be trusted again
-  /// (never built, particle count changed, or radii changed).
+  /// True when the list cannot be used at all (never built, or the particle
+  /// count changed).  Whoever changes radii must ask for a rebuild
+  /// (Simulation::invalidate_neighbors).
   bool stale(const ParticleStore &particles) const;
 
   const std::vector<Pair> &pairs() const { return pairs_; }
@@ -47,7 +48,6 @@ private:
   double skin_;
   double quarter_skin_sq_ = 0;
   std::vector<Vec3> reference_;
-  std::vector<double> reference_radius_;
   std::vector<Pair> pairs_;
   std::vector<Index> cell_start_, cell_members_, cell_of_, cell_fill_, partners_;
   std::size_t rebuilds_ = 0;

@@ -1,6 +1,7 @@
 #include "particles.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dem
 {
@@ -18,6 +19,9 @@ Index ParticleStore::add(const BallSpec &spec)
   inertia.push_back(0);
   inv_mass.push_back(0);
   inv_inertia.push_back(0);
+  sqrt_inv_mass.push_back(0);
+  inv_radius.push_back(0);
+  sqrt_shear_mobility.push_back(0);
   kn.push_back(spec.kn);
   ks.push_back(spec.ks);
   friction.push_back(spec.friction);
@@ -31,7 +35,7 @@ void ParticleStore::reserve(std::size_t n)
 {
   for (auto *v : {&position, &velocity, &spin, &force, &torque})
     v->reserve(n);
-  for (auto *v : {&radius, &density, &mass, &inertia, &inv_mass, &inv_inertia, &kn, &ks, &friction})
+  for (auto *v : {&radius, &density, &mass, &inertia, &inv_mass, &inv_inertia, &inv_radius, &sqrt_inv_mass, &sqrt_shear_mobility, &kn, &ks, &friction})
     v->reserve(n);
   motion.reserve(n);
 }
@@ -39,6 +43,7 @@ void ParticleStore::reserve(std::size_t n)
 void ParticleStore::set_radius(Index p, double r)
 {
   radius[p] = r;
+  inv_radius[p] = r > 0 ? 1.0 / r : 0.0;
   mass[p] = density[p] * volume(p);
   inertia[p] = 0.4 * mass[p] * r * r;
   set_motion(p, holds_velocity(p), holds_spin(p));
@@ -50,6 +55,8 @@ void ParticleStore::set_motion(Index p, bool hold_velocity, bool hold_spin)
                                         (hold_spin ? spin_held : 0));
   inv_mass[p] = hold_velocity || mass[p] <= 0 ? 0.0 : 1.0 / mass[p];
   inv_inertia[p] = hold_spin || inertia[p] <= 0 ? 0.0 : 1.0 / inertia[p];
+  sqrt_inv_mass[p] = std::sqrt(inv_mass[p]);
+  sqrt_shear_mobility[p] = std::sqrt(inv_mass[p] + radius[p] * radius[p] * inv_inertia[p]);
 }
 
 double ParticleStore::max_radius() const

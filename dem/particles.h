@@ -71,6 +71,9 @@ public:
   std::vector<double> inertia;  // kg m^2
   std::vector<double> inv_mass;    // 1/kg, zero when the velocity is held
   std::vector<double> inv_inertia; // 1/(kg m^2), zero when the spin is held
+  std::vector<double> inv_radius;        // 1/m
+  std::vector<double> sqrt_inv_mass;     // 1/sqrt(kg), for the stability bound
+  std::vector<double> sqrt_shear_mobility; // sqrt(1/m + R^2/I), for the stability bound
   std::vector<double> kn;       // N/m
   std::vector<double> ks;       // N/m
   std::vector<double> friction; // -

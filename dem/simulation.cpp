@@ -19,7 +19,7 @@ Simulation::Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<C
   const auto n = static_cast<std::size_t>(particles_.size());
   walls_.resize_history(particles_.size());
   row_bound_.assign(n, 0);
-  lone_bound_.assign(n, 0);
+  active_walls_.reserve(static_cast<std::size_t>(walls_.size()));
   wall_power_.assign(n, 0);
   ball_energy_.assign(n, BallEnergy{});
   breaks_.reserve(1024);
@@ -33,10 +33,20 @@ void Simulation::step()
 
 void Simulation::refresh_contacts()
 {
+  // A ball without contacts still gets the step of one contact with its own
+  // stiffness, so that a first impact is resolved; real mass and inertia are
+  // used so that a scene of held balls still has a step.  Radii only change
+  // before a refresh, so this is computed here, not every step.
+  lone_bound_max_ = 0;
+  for (Index p = 0; p < particles_.size(); ++p)
+  {
+    const ParticleStore &P = particles_;
+    const double own = std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p]));
+    lone_bound_max_ = std::max(lone_bound_max_, own / P.mass[p]);
+  }
   neighbors_.set_skin(settings_.skin_fraction * particles_.max_radius());
   neighbors_.rebuild(particles_);
   contacts_.rebuild(neighbors_.pairs(), particles_);
-  model_->remap_history(contacts_.origin());
   rebuild_requested_ = false;
 }
 
@@ -44,6 +54,13 @@ void Simulation::compute_forces()
 {
   if (rebuild_requested_ || neighbors_.stale(particles_))
     refresh_contacts();
+  if (contacts_.take_changed())
+  {
+    // Pairs were added (ensure) or the table rebuilt: law history follows
+    // the entries, and the precomputed pair constants are refreshed.
+    model_->remap_history(contacts_.origin());
+    model_->update_stability_terms(particles_, contacts_);
+  }
   if (model_->resolve_pairs(particles_, contacts_, dt_prev_) > 0)
     record_breaks();
   gather_forces();
@@ -80,10 +97,15 @@ void Simulation::gather_forces()
   const auto &second_list = contacts_.second_list();
   const LinearLaw wall_law;
   const double dt = dt_prev_;
-  const int walls = walls_.size();
+  active_walls_.clear();
+  for (WallIndex w = 0; w < walls_.size(); ++w)
+    if (walls_[w].enabled)
+      active_walls_.push_back(w);
+  const int walls = static_cast<int>(active_walls_.size());
   ParticleStore &P = particles_;
+  double largest = 0;
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) reduction(max : largest)
   for (Index p = 0; p < n; ++p)
   {
     Vec3 f = P.mass[p] * settings_.gravity;
@@ -92,22 +114,23 @@ void Simulation::gather_forces()
     for (std::size_t c = contacts_.first_begin(p); c < contacts_.first_begin(p + 1); ++c)
     {
       f -= loads[c].force;
-      t += loads[c].torque_first;
+      t -= loads[c].arm_first * loads[c].lever;
       bound += loads[c].bound_first;
     }
     for (std::size_t k = contacts_.second_begin(p); k < contacts_.second_begin(p + 1); ++k)
     {
       const std::size_t c = second_list[k];
       f += loads[c].force;
-      t += loads[c].torque_second;
+      t -= loads[c].arm_second * loads[c].lever;
       bound += loads[c].bound_second;
     }
     double power = 0;
-    for (WallIndex w = 0; w < walls; ++w)
+    for (int k = 0; k < walls; ++k)
     {
-      ContactState &state = walls_.state(w, p);
-      if (!walls_[w].enabled || (!state.touching && walls_.clearance(w, P.position[p]) >= P.radius[p]))
+      const WallIndex w = active_walls_[k];
+      if (walls_.clearance(w, P.position[p]) >= P.radius[p] && !walls_.engaged(w, p))
         continue;
+      ContactState &state = walls_.state(w, p);
       const ContactGeometry g = walls_.geometry(w, P.position[p], P.radius[p], P.velocity[p], P.spin[p]);
       const WallProps &wp = walls_[w].props;
       const ContactParams params{in_series(P.kn[p], wp.kn), in_series(P.ks[p], wp.ks),
@@ -115,39 +138,27 @@ void Simulation::gather_forces()
       ContactBond no_bond;
       LinearLaw::History none;
       const ResolvedContact r = resolve_contact(wall_law, params, no_bond, state, none, g, dt);
+      walls_.set_engaged(w, p, r.touching);
       if (!r.touching)
         continue;
       f += r.force;
-      t -= g.arm_second * g.normal.cross(state.shear_force);
-      const double b = shear_mobility(P.inv_mass[p], P.inv_inertia[p], g.arm_second);
-      bound += stability_row_term(params.kn, params.ks, P.inv_mass[p], b, 0.0, 0.0);
+      t -= g.arm_second * cross(g.normal, state.shear_force);
+      const double sb = arm_factor(g.arm_second, P.inv_radius[p]) * P.sqrt_shear_mobility[p];
+      bound += stability_row_term(params.kn, params.ks, P.inv_mass[p], sb * sb, 0.0, 0.0);
       power += r.force.dot(walls_.surface_velocity(w, P.position[p]));
     }
-    // A ball without contacts still gets the step of one contact with its
-    // own stiffness, so that the first impact is resolved; real mass and
-    // inertia are used so that a scene of held balls still has a step.
-    const double alone =
-      std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p])) / P.mass[p];
     P.force[p] = f;
     P.torque[p] = t;
     row_bound_[p] = bound;
-    lone_bound_[p] = alone;
     wall_power_[p] = power;
+    largest = std::max(largest, bound);
   }
+  // The bound of the contacts that exist; infinite when none carries force.
+  dt_critical_ = critical_step(largest);
 }
 
 void Simulation::choose_time_step()
 {
-  const Index n = particles_.size();
-  double largest = 0, lone = 0;
-#pragma omp parallel for schedule(static) reduction(max : largest, lone)
-  for (Index p = 0; p < n; ++p)
-  {
-    largest = std::max(largest, row_bound_[p]);
-    lone = std::max(lone, lone_bound_[p]);
-  }
-  // The bound of the contacts that exist; infinite when none carries force.
-  dt_critical_ = critical_step(largest);
 
   if (settings_.fixed_time_step > 0)
   {
@@ -164,7 +175,7 @@ void Simulation::choose_time_step()
   {
     // The automatic step also respects the step of a single contact of each
     // ball, so that a ball flying towards another resolves its first impact.
-    dt_ = settings_.time_step_safety * std::min(dt_critical_, critical_step(lone));
+    dt_ = settings_.time_step_safety * std::min(dt_critical_, critical_step(lone_bound_max_));
     if (!std::isfinite(dt_))
       fail(-1, "no particle has a finite critical time step (every ball has zero stiffness)");
   }
@@ -188,51 +199,57 @@ void Simulation::integrate(bool measure_kinetic)
   Index first_bad = n;
   bool moved = false;
 
-  const auto damped = [alpha](const Vec3 &f, const Vec3 &v) {
-    Vec3 out = f;
-    for (int k = 0; k < 3; ++k)
-      if (v[k] != 0)
-        out[k] -= alpha * std::abs(f[k]) * (v[k] > 0 ? 1.0 : -1.0);
-    return out;
-  };
+  // Raw views of the ball arrays: the loop below is the hottest per-ball
+  // code, written component by component so that it compiles to plain
+  // arithmetic.  Vec3 arrays are contiguous x, y, z triples.
+  double *const x = P.position.front().data();
+  double *const v = P.velocity.front().data();
+  double *const w = P.spin.front().data();
+  const double *const f = P.force.front().data();
+  const double *const t = P.torque.front().data();
 
 #pragma omp parallel for schedule(static) reduction(min : first_bad) reduction(|| : moved)
   for (Index p = 0; p < n; ++p)
   {
     BallEnergy &e = ball_energy_[p];
-    const Vec3 f = P.force[p], t = P.torque[p];
-    const Vec3 v_old = P.velocity[p], w_old = P.spin[p];
-    Vec3 v_new = v_old, w_new = w_old;
-    if (P.holds_velocity(p))
-      e.boundary -= (f - P.mass[p] * gravity).dot(v_old) * kick;
-    else
+    const std::size_t b = 3 * static_cast<std::size_t>(p);
+    // A held ball has zero inverse mass (inertia), so the kick leaves it
+    // alone; the flags below only route its energy to the boundary work its
+    // constraint does.
+    const double free_v = P.holds_velocity(p) ? 0.0 : 1.0, free_w = P.holds_spin(p) ? 0.0 : 1.0;
+    const double im = P.inv_mass[p] * kick, ii = P.inv_inertia[p] * kick, m = P.mass[p];
+    double power = wall_power_[p], damping = 0, body = 0, held = 0, kinetic = 0, speed2 = 0, spin2 = 0;
+    for (int k = 0; k < 3; ++k)
     {
-      const Vec3 fd = damped(f, v_old);
-      v_new = v_old + fd * (P.inv_mass[p] * kick);
-      const Vec3 v_mid = 0.5 * (v_old + v_new);
-      e.damping += (f - fd).dot(v_mid) * kick;
-      e.body += P.mass[p] * gravity.dot(v_mid) * kick;
+      // PFC local damping: the component loses alpha |F| against the sign of
+      // its velocity, nothing at zero velocity (branch-free selects).
+      const double vo = v[b + k], wo = w[b + k];
+      const double fd = alpha * std::abs(f[b + k]), td = alpha * std::abs(t[b + k]);
+      const double f_damp = vo > 0 ? fd : (vo < 0 ? -fd : 0.0);
+      const double t_damp = wo > 0 ? td : (wo < 0 ? -td : 0.0);
+      const double vn = vo + (f[b + k] - f_damp) * im;
+      const double wn = wo + (t[b + k] - t_damp) * ii;
+      const double vm = 0.5 * (vo + vn), wm = 0.5 * (wo + wn);
+      damping += free_v * f_damp * vm + free_w * t_damp * wm;
+      body += free_v * m * gravity[k] * vm;
+      // A held ball's constraint does the work the resultant would have done.
+      held += (1.0 - free_v) * (f[b + k] - m * gravity[k]) * vo + (1.0 - free_w) * t[b + k] * wo;
+      if (measure_kinetic)
+        kinetic += 0.5 * m * vo * (first_step ? vo : vn) + 0.5 * P.inertia[p] * wo * (first_step ? wo : wn);
+      v[b + k] = vn;
+      w[b + k] = wn;
+      x[b + k] += vn * dt;
+      speed2 += vn * vn;
+      spin2 += wn * wn;
     }
-    if (P.holds_spin(p))
-      e.boundary -= t.dot(w_old) * kick;
-    else
-    {
-      const Vec3 td = damped(t, w_old);
-      w_new = w_old + td * (P.inv_inertia[p] * kick);
-      e.damping += (t - td).dot(0.5 * (w_old + w_new)) * kick;
-    }
-    e.boundary += wall_power_[p] * kick;
+    power -= held;
+    e.boundary += power * kick;
+    e.damping += damping * kick;
+    e.body += body * kick;
     if (measure_kinetic)
-    {
-      const Vec3 &v_pair = first_step ? v_old : v_new;
-      const Vec3 &w_pair = first_step ? w_old : w_new;
-      e.kinetic = 0.5 * P.mass[p] * v_old.dot(v_pair) + 0.5 * P.inertia[p] * w_old.dot(w_pair);
-    }
-    P.velocity[p] = v_new;
-    P.spin[p] = w_new;
-    P.position[p] += v_new * dt;
-    const double travel = v_new.norm() * dt;
-    if (!(travel <= 0.5 * P.radius[p]) || !std::isfinite(w_new.squaredNorm()))
+      e.kinetic = kinetic;
+    const double half_radius = 0.5 * P.radius[p];
+    if (!(speed2 * dt * dt <= half_radius * half_radius) || !std::isfinite(spin2))
       first_bad = std::min(first_bad, p);
     moved = moved || neighbors_.moved_too_far(p, P.position[p]);
   }

@@ -142,8 +142,9 @@ private:
 
   // Per-ball scratch, sized once: no allocation inside the step.
   std::vector<double> row_bound_;  ///< 1/s^2, stability row bound of the contacts
-  std::vector<double> lone_bound_; ///< 1/s^2, row bound of one contact with the ball's own stiffness
+  double lone_bound_max_ = 0;      ///< 1/s^2, largest row bound of one contact with a ball's own stiffness
   std::vector<double> wall_power_; ///< W, sum over walls of F_wall->ball . v_wall
+  std::vector<WallIndex> active_walls_; ///< enabled walls, refreshed each step
 
   struct BallEnergy
   {

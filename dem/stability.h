@@ -51,6 +51,14 @@ inline double shear_mobility(double inv_mass, double inv_inertia, double arm)
   return inv_mass + arm * arm * inv_inertia;
 }
 
+/// Factor f with b(a) <= f^2 b(R) for an arm a (given 1/R), b(R) = 1/m + R^2/I: the arm
+/// is at most R in compression, and b(a) <= (a/R)^2 b(R) beyond.  With
+/// b(R) and its square root stored per ball, a contact needs no root.
+inline double arm_factor(double arm, double inv_radius)
+{
+  return std::max(1.0, arm * inv_radius);
+}
+
 /// The step 2/sqrt(bound); infinite for a ball without contacts.
 inline double critical_step(double row_bound)
 {

@@ -20,5 +20,14 @@ using Index = std::int32_t;
 inline constexpr double pi = 3.14159265358979323846;
 inline constexpr double infinity = std::numeric_limits<double>::infinity();
 
-inline Vec3 zero_vec() { return Vec3::Zero(); }
+/// Cross product written component-wise: for 3-vectors this compiles to
+/// plain (fused) multiply-adds, where Eigen's packet version shuffles.
+inline Vec3 cross(const Vec3 &a, const Vec3 &b)
+{
+  return Vec3(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
+}
+
+/// For the few small functions of the per-contact kernel: inlining them
+/// keeps the vector registers live instead of spilling them around a call.
+#define DEM_HOT_INLINE inline __attribute__((always_inline))
 } // namespace dem

@@ -10,6 +10,7 @@ WallIndex WallSet::add(Wall w)
   w.direction.normalize();
   walls_.push_back(std::move(w));
   history_.resize(stride_ * walls_.size());
+  engaged_.resize(stride_ * walls_.size(), 0);
   return static_cast<WallIndex>(walls_.size() - 1);
 }
 
@@ -35,12 +36,9 @@ std::pair<Vec3, double> radial_of(const Wall &c, const Vec3 &x)
 }
 } // namespace
 
-double WallSet::clearance(WallIndex w, const Vec3 &x) const
+double WallSet::cylinder_clearance(const Wall &c, const Vec3 &x)
 {
-  const Wall &wall = walls_[w];
-  if (wall.shape == WallShape::plane)
-    return (x - wall.point).dot(wall.direction);
-  return wall.radius - radial_of(wall, x).second;
+  return c.radius - radial_of(c, x).second;
 }
 
 ContactGeometry WallSet::geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v,
@@ -84,6 +82,8 @@ void WallSet::set_enabled(WallIndex w, bool enabled)
   walls_[w].enabled = enabled;
   std::fill(history_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0)),
             history_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0) + stride_), ContactState{});
+  std::fill(engaged_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0)),
+            engaged_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0) + stride_), 0);
 }
 
 void WallSet::advance(double dt)
@@ -99,5 +99,6 @@ void WallSet::resize_history(Index particles)
 {
   stride_ = static_cast<std::size_t>(particles);
   history_.assign(stride_ * walls_.size(), ContactState{});
+  engaged_.assign(stride_ * walls_.size(), 0);
 }
 } // namespace dem

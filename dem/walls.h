@@ -59,7 +59,11 @@ public:
   WallIndex find(const std::string &name) const; ///< -1 if absent
 
   /// Distance from point x to the wall surface, positive on the particle side.
-  double clearance(WallIndex w, const Vec3 &x) const;
+  double clearance(WallIndex w, const Vec3 &x) const
+  {
+    const Wall &wall = walls_[w];
+    return wall.shape == WallShape::plane ? (x - wall.point).dot(wall.direction) : cylinder_clearance(wall, x);
+  }
 
   /// Geometry of the contact of a ball (centre x, radius r, velocity v, spin
   /// omega) with wall w.  The wall is the first entity.
@@ -79,11 +83,17 @@ public:
   void resize_history(Index particles);
   ContactState &state(WallIndex w, Index p) { return history_[slot(w, p)]; }
   const ContactState &state(WallIndex w, Index p) const { return history_[slot(w, p)]; }
+  /// Whether ball p touched wall w at the last update: a byte per pair, so
+  /// the force pass can skip distant balls without reading their history.
+  bool engaged(WallIndex w, Index p) const { return engaged_[slot(w, p)] != 0; }
+  void set_engaged(WallIndex w, Index p, bool on) { engaged_[slot(w, p)] = on ? 1 : 0; }
 
 private:
+  static double cylinder_clearance(const Wall &c, const Vec3 &x);
   std::size_t slot(WallIndex w, Index p) const { return static_cast<std::size_t>(w) * stride_ + p; }
   std::vector<Wall> walls_;
   std::vector<ContactState> history_;
+  std::vector<std::uint8_t> engaged_;
   std::size_t stride_ = 0;
 };
 } // namespace dem

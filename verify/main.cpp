@@ -7,6 +7,7 @@
 //
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
 // usage; 3 the simulation stopped on a numerical fault.
+#include "bench.h"
 #include "commands.h"
 #include "deck.h"
 
@@ -43,6 +44,16 @@ int main(int argc, char **argv)
   verify_cmd->add_option("--cases", cases_dir, "Case decks directory (default: the source tree's cases/)");
   verify_cmd->add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
 
+  verify::BenchOptions bench;
+  auto *bench_cmd = app.add_subcommand("bench", "Time the engine on a bonded sample and print one line");
+  bench_cmd->add_option("--particles", bench.particles, "Number of balls (default 6000)")->check(CLI::Range(8L, 100000000L));
+  bench_cmd->add_option("--steps", bench.steps, "Timed steps (default 2000)")->check(CLI::Range(1L, 1000000000L));
+  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  bench_cmd->add_option("--repeat", bench.repeat, "Timings to take; the fastest is reported (default 3)")
+    ->check(CLI::Range(1, 100));
+  bench_cmd->add_option("--lattice", bench.lattice, "Sample lattice: sc (coordination 6) or fcc (12)");
+  bench_cmd->add_option("--law", bench.law, "Contact law keyword");
+
   try
   {
     app.parse(argc, argv);
@@ -67,6 +78,8 @@ int main(int argc, char **argv)
       return verify::command_run(deck_path, overrides, {out_dir, threads, true});
     if (defaults->parsed())
       return verify::command_defaults(kind);
+    if (bench_cmd->parsed())
+      return verify::command_bench(bench);
     if (verify_cmd->parsed())
     {
       if (quick && full)
