@@ -319,12 +319,7 @@ void flatten_json(const nlohmann::json &j, const std::string &prefix, std::vecto
     else if (v.is_boolean())
       out.push_back({key, v.get<bool>() ? "true" : "false", 0});
     else if (v.is_number())
-    {
-      std::ostringstream o;
-      o.precision(17);
-      o << v.get<double>();
-      out.push_back({key, o.str(), 0});
-    }
+      out.push_back({key, v.dump(), 0}); // shortest text that reads back to the same number
     else
       throw DeckError(path + ": key '" + key + "' has a JSON " + std::string(v.type_name()) +
                       ": expected a string, number or boolean");

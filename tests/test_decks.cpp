@@ -1,0 +1,137 @@
+// Bad input is refused with one line naming the file, the key, the value and
+// what was expected; good input of either syntax (.prm, JSON) is accepted.
+#include "commands.h"
+#include "deck.h"
+#include "scene.h"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+const std::string data = DEMVV_TEST_DATA;
+
+/// Writes a deck into a fresh temporary directory and returns its path.
+std::string write_deck(const std::string &name, const std::string &text)
+{
+  const fs::path dir = fs::temp_directory_path() / "demvv_test_decks";
+  fs::create_directories(dir);
+  const fs::path path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string scene(const std::string &extra, const std::string &particles = data + "/two_balls.csv")
+{
+  return "set kind = scene\nsubsection particles\n  set file = " + particles + "\nend\n" + extra;
+}
+
+/// The DeckError message of running a deck; empty if it ran.
+std::string error_of(const std::string &path, const std::vector<std::string> &overrides = {})
+{
+  try
+  {
+    verify::run_scene(verify::Deck::from_file(path, overrides), {});
+  }
+  catch (const verify::DeckError &e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+void require_one_line_naming(const std::string &message, std::initializer_list<std::string> parts)
+{
+  INFO("message: " << message);
+  REQUIRE_FALSE(message.empty());
+  CHECK(message.find('\n') == std::string::npos);
+  for (const std::string &p : parts)
+    CHECK(message.find(p) != std::string::npos);
+}
+} // namespace
+
+TEST_CASE("an unknown key is refused with a suggestion", "[deck]")
+{
+  const auto path = write_deck("unknown.prm", scene("subsection balls\n  set normal stifness = 1e6\nend\n"));
+  require_one_line_naming(error_of(path), {path + ":6", "balls/normal stifness", "did you mean 'balls/normal stiffness'"});
+}
+
+TEST_CASE("a value of the wrong type or out of range names key and value and expectation", "[deck]")
+{
+  const auto wrong_type = write_deck("type.prm", scene("subsection run\n  set duration = soon\nend\n"));
+  require_one_line_naming(error_of(wrong_type), {"type.prm:6", "run/duration", "'soon'", "expected a number > 0"});
+  const auto negative = write_deck("negative.prm", scene("subsection balls\n  set shear stiffness = -5\nend\n"));
+  require_one_line_naming(error_of(negative), {"balls/shear stiffness", "'-5'", "expected a number >= 0"});
+  const auto friction = write_deck("friction.prm", scene("subsection balls\n  set friction = -0.1\nend\n"));
+  require_one_line_naming(error_of(friction), {"balls/friction", "'-0.1'", "expected"});
+  const auto cov = write_deck("cov.prm", scene("subsection bonds\n  set strength cov = -1\nend\n"));
+  require_one_line_naming(error_of(cov), {"bonds/strength cov", "'-1'", "expected"});
+  const auto strength = write_deck("strength.prm", scene("subsection bonds\n  set normal strength = 0\nend\n"));
+  require_one_line_naming(error_of(strength), {"bonds/normal strength", "'0'", "expected a number > 0"});
+  const auto choice = write_deck("choice.prm", scene("subsection contact law\n  set law = hertz\nend\n"));
+  require_one_line_naming(error_of(choice), {"contact law/law", "'hertz'", "one of linear"});
+}
+
+TEST_CASE("bad particle files are refused naming file and line and column", "[deck]")
+{
+  require_one_line_naming(error_of(write_deck("empty.prm", scene("", data + "/empty.csv"))),
+                          {"empty.csv", "no particles"});
+  require_one_line_naming(error_of(write_deck("radius.prm", scene("", data + "/negative_radius.csv"))),
+                          {"negative_radius.csv:3", "radius_m", "-0.001", "expected a radius > 0"});
+  require_one_line_naming(error_of(write_deck("column.prm", scene("", data + "/missing_column.csv"))),
+                          {"missing_column.csv", "z_m", "missing"});
+  require_one_line_naming(error_of(write_deck("nan.prm", scene("", data + "/not_a_number.csv"))),
+                          {"not_a_number.csv:3", "z_m", "'zero'", "expected a number"});
+  require_one_line_naming(error_of(write_deck("absent.prm", scene("", data + "/no_such_file.csv"))),
+                          {"no_such_file.csv", "cannot open"});
+}
+
+TEST_CASE("a wall overlapping a ball at the start is refused", "[deck]")
+{
+  const auto path = write_deck("wall.prm", scene("subsection walls\n  subsection plane 1\n    set enabled = true\n"
+                                                 "    set point = 0.0005, 0, 0\n    set normal = 1, 0, 0\n  end\nend\n"));
+  require_one_line_naming(error_of(path), {"walls/plane 1/point", "overlaps particle 0", "expected"});
+}
+
+TEST_CASE("deck syntax errors and missing kind or deck and bad overrides", "[deck]")
+{
+  require_one_line_naming(error_of(write_deck("nokind.prm", "subsection run\nend\n")), {"'kind' is missing"});
+  require_one_line_naming(error_of(write_deck("badkind.prm", "set kind = soup\n")), {"badkind.prm:1", "'soup'", "scene"});
+  require_one_line_naming(error_of(write_deck("unclosed.prm", "set kind = scene\nsubsection run\n")),
+                          {"unclosed.prm", "never closed"});
+  require_one_line_naming(error_of(write_deck("garbage.prm", "set kind = scene\nthis is not a deck\n")),
+                          {"garbage.prm:2", "expected 'set KEY = VALUE'"});
+  require_one_line_naming(error_of(data + "/nowhere.prm"), {"nowhere.prm", "cannot open"});
+  const auto ok = write_deck("ok.prm", scene(""));
+  require_one_line_naming(error_of(ok, {"run/duratio=1"}), {"--set run/duratio", "did you mean 'run/duration'"});
+  require_one_line_naming(error_of(ok, {"run/duration"}), {"expected SECTION/KEY=VALUE"});
+  require_one_line_naming(error_of(write_deck("bad.json", "{\"kind\": \"scene\", ")), {"bad.json", "not valid JSON"});
+}
+
+TEST_CASE("a JSON deck is the same deck as its .prm twin", "[deck]")
+{
+  const auto prm = write_deck("twin.prm", scene("subsection run\n  set duration = 2e-4\nend\n"));
+  const auto json = write_deck("twin.json", "{\"kind\": \"scene\", \"particles\": {\"file\": \"" + data +
+                                                "/two_balls.csv\"}, \"run\": {\"duration\": 2e-4}}");
+  const verify::Deck a = verify::Deck::from_file(prm), b = verify::Deck::from_file(json);
+  CHECK(a.kind() == b.kind());
+  CHECK(a.real("run/duration") == b.real("run/duration"));
+  CHECK(a.text("particles/file") == b.text("particles/file"));
+  CHECK(a.real("balls/normal stiffness") == b.real("balls/normal stiffness"));
+}
+
+TEST_CASE("every kind's documented defaults read back as a deck", "[deck]")
+{
+  for (const verify::DeckKind &k : verify::deck_kinds())
+  {
+    INFO("kind " << k.name);
+    const verify::Deck d = verify::Deck::defaults(std::string(k.name));
+    const auto path = write_deck(std::string(k.name) + "_defaults.prm", d.documented());
+    CHECK(verify::Deck::from_file(path).resolved() == d.resolved());
+  }
+}

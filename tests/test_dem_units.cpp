@@ -1,0 +1,143 @@
+// Unit tests of engine pieces, each against an exact value.
+#include "support/two_body.h"
+
+#include "analysis.h"
+#include "bonds.h"
+#include "measure.h"
+#include "neighbors.h"
+#include "sample_lattice.h"
+#include "stability.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace demtest;
+using Catch::Matchers::WithinRel;
+
+TEST_CASE("stiffnesses combine in series (thesis eq. 3.17-3.18)", "[dem][law]")
+{
+  CHECK(dem::in_series(2.0, 2.0) == 1.0);
+  CHECK_THAT(dem::in_series(1.2e7, 3.0e7), WithinRel(1.2e7 * 3.0e7 / 4.2e7, 1e-15));
+  CHECK(dem::in_series(1.2e7, 0.0) == 0.0); // a shear-free platen
+}
+
+TEST_CASE("sphere intersection volume: limits and the half-overlap lens", "[dem][measure]")
+{
+  const double r = 1.0, ball = 4.0 / 3.0 * dem::pi;
+  CHECK(dem::sphere_intersection_volume(r, r, 2.0) == 0.0);
+  CHECK_THAT(dem::sphere_intersection_volume(r, 3.0, 0.5), WithinRel(ball, 1e-15)); // ball inside
+  // Two unit spheres at distance 1: two caps of height 1/2, pi h^2 (3r - h)/3 each.
+  const double cap = dem::pi * 0.25 * (3.0 - 0.5) / 3.0;
+  CHECK_THAT(dem::sphere_intersection_volume(r, r, 1.0), WithinRel(2 * cap, 1e-14));
+}
+
+TEST_CASE("shear force rotation keeps magnitude and follows the plane", "[dem][law]")
+{
+  const Vec3 n0 = Vec3(1, 0, 0), n1 = Vec3(std::cos(1e-3), std::sin(1e-3), 0);
+  const Vec3 f(0, 2.0, 0.5); // in the plane normal to n0
+  const Vec3 r = dem::rotate_with_contact_plane(f, n0, n1, 0.0);
+  CHECK(std::abs(r.dot(n1)) < 1e-15);
+  // |r| = |f| (1 + O(phi^4)), phi = 1e-3.
+  CHECK_THAT(r.norm(), WithinRel(f.norm(), 1e-12));
+  // A pure twist by t about n turns f by atan-accurate angle: third order.
+  const Vec3 twisted = dem::rotate_with_contact_plane(f, n0, n0, 1e-3);
+  const Vec3 exact = Eigen::AngleAxisd(1e-3, n0) * f;
+  CHECK((twisted - exact).norm() < 1e-9 * f.norm());
+}
+
+TEST_CASE("linear law closed forms are consistent", "[dem][law]")
+{
+  const double k = 6e6, m = 3.8e-6;
+  CHECK_THAT(dem::LinearLaw::collision_time(k, m) * dem::LinearLaw::natural_frequency(k, m), WithinRel(dem::pi, 1e-15));
+  CHECK_THAT(dem::LinearLaw::peak_force(k, m, 0.1), WithinRel(0.1 * std::sqrt(m * k), 1e-15));
+  CHECK(dem::LinearLaw::reduced_mass(2.0, 2.0) == 1.0);
+}
+
+TEST_CASE("contact history survives neighbour rebuilds; bonded pairs stay listed", "[dem][contacts]")
+{
+  auto sim = two_balls(1e-3, 2e-3, 1e6, 1e5, 0.5);
+  sim.refresh_contacts();
+  dem::bond_pair(sim.contacts(), sim.particles(), 0, 1, 10.0, 10.0);
+  sim.contacts().find(0, 1)->state.shear_force = Vec3(0, 0.25, 0);
+  sim.contacts().find(0, 1)->state.touching = true;
+  // Pull the balls far apart (beyond any skin) and rebuild: the bonded pair
+  // must still be in the table with its history.
+  sim.particles().position[1].x() = 5e-3;
+  sim.invalidate_neighbors();
+  sim.refresh_contacts();
+  const dem::Contact *c = sim.contacts().find(0, 1);
+  REQUIRE(c != nullptr);
+  CHECK(c->bond.intact);
+  CHECK(c->state.shear_force.y() == 0.25);
+  // An unbonded, separated pair is dropped at the next rebuild.
+  sim.contacts().find(0, 1)->bond.intact = false;
+  sim.contacts().find(0, 1)->state.touching = false;
+  sim.invalidate_neighbors();
+  sim.refresh_contacts();
+  CHECK(sim.contacts().find(0, 1) == nullptr);
+}
+
+TEST_CASE("Gaussian bond strengths are seeded and truncated and counted; removal is exact", "[dem][bonds]")
+{
+  dem::ParticleStore p;
+  for (const Vec3 &x : dem::lattice_box(dem::Lattice::simple_cubic, 1e-3, 6, 6, 6))
+    p.add(ball(x, 1e-3, 1e6));
+  auto make = [&] {
+    auto sim = make_sim(p);
+    sim.refresh_contacts();
+    return sim;
+  };
+  dem::BondSettings s;
+  s.normal_strength = s.shear_strength = 10;
+  s.cov = 0.5;
+  s.seed = 42;
+  auto a = make(), b = make();
+  const auto ra = dem::bond_touching_pairs(a.contacts(), a.particles(), s);
+  const auto rb = dem::bond_touching_pairs(b.contacts(), b.particles(), s);
+  CHECK(ra.bonded == 3 * 6 * 6 * 5); // SC lattice 6^3: 3 x 6 x 6 x 5 touching pairs
+  CHECK(ra.truncated_draws == rb.truncated_draws);
+  CHECK(ra.truncated_draws > 0); // at CoV 0.5, P(z < -1.98) ~ 2.4 % of 1080 draws fall below 1 % of the mean
+  for (std::size_t k = 0; k < a.contacts().size(); ++k)
+    CHECK(a.contacts()[k].bond.normal_strength == b.contacts()[k].bond.normal_strength);
+  double lowest = 1e300;
+  for (const auto &c : a.contacts().entries())
+    lowest = std::min(lowest, c.bond.normal_strength);
+  CHECK(lowest == Approx(0.1)); // the floor, 1 % of the mean
+
+  s.removed_fraction = 0.2;
+  auto c = make();
+  const auto rc = dem::bond_touching_pairs(c.contacts(), c.particles(), s);
+  CHECK(rc.removed == static_cast<std::size_t>(std::llround(0.2 * 540)));
+  CHECK(rc.bonded + rc.removed == 540);
+}
+
+TEST_CASE("analysis: line fit and peak and largest rate", "[verify][analysis]")
+{
+  const std::vector<double> x = {0, 1, 2, 3, 4, 5};
+  const std::vector<double> y = {1, 3, 5, 7, 6, 2};
+  const auto fit = verify::fit_line(x, y, 0, 3);
+  CHECK(fit.points == 4);
+  CHECK_THAT(fit.slope, WithinRel(2.0, 1e-14));
+  CHECK_THAT(fit.intercept, WithinRel(1.0, 1e-14));
+  const auto pk = verify::peak(x, y);
+  CHECK(pk.value == 7);
+  CHECK(pk.at == 3);
+  double at = 0, rate = 0;
+  REQUIRE(verify::x_at_max_rate(x, std::vector<double>{0, 0, 1, 5, 8, 8}, at, rate));
+  CHECK(at == 3); // centred differences 0.5, 2.5, 3.5, 1.5 at x = 1..4
+  CHECK(rate == 3.5);
+}
+
+TEST_CASE("a ball resting on a wall gets a finite step that is exactly the limit", "[dem][stability]")
+{
+  dem::WallSet walls;
+  walls.add(floor_wall(1e6, 1e5));
+  dem::ParticleStore p;
+  p.add(ball(Vec3(0, 0, 1e-3 - 1e-8), 1e-3, 1e6, 1e5));
+  auto sim = make_sim(std::move(p), std::move(walls));
+  sim.compute_forces();
+  // One ball on a wall with ks > 0: exact omega_max^2 = max(K_n/m, K_s(1/m + R^2/I)).
+  REQUIRE(std::isfinite(sim.critical_time_step()));
+  CHECK_THAT(sim.critical_time_step(), WithinRel(dem::exact_stability_limit(sim), 1e-12));
+}
