@@ -27,27 +27,12 @@ constexpr double KS = 1.2e6;     // N/m per ball
 
 dem::BallSpec ball_at(const Vec3 &x, double r = R, double kn = KN, double ks = KS, double mu = 0.5)
 {
-  dem::BallSpec b;
-  b.position = x;
-  b.radius = r;
-  b.kn = kn;
-  b.ks = ks;
-  b.friction = mu;
-  return b;
-}
-
-dem::SimulationSettings undamped(double fixed_dt = 0, bool allow_unstable = false)
-{
-  dem::SimulationSettings s;
-  s.local_damping = 0;
-  s.fixed_time_step = fixed_dt;
-  s.allow_unstable_step = allow_unstable;
-  return s;
+  return ball(x, r, kn, ks, mu);
 }
 
 dem::Simulation simulation(dem::ParticleStore p, dem::SimulationSettings s, dem::WallSet w = {})
 {
-  return dem::Simulation(std::move(p), std::move(w), dem::make_contact_model("linear", {}), s);
+  return linear_simulation(std::move(p), s, std::move(w));
 }
 
 void bond_all_touching(dem::Simulation &sim, double strength = 1e9)

@@ -6,6 +6,8 @@
 #include "scene.h"
 #include "series.h"
 
+#include "simulation.h"
+
 #include <string>
 #include <vector>
 
@@ -27,4 +29,10 @@ double max_abs(const std::vector<double> &v);
 
 /// Formats a number for notes.
 std::string num(double v);
+
+/// Small systems in a line or three (STYLE rule 8), for checks and tests.
+dem::BallSpec ball(const dem::Vec3 &x, double r, double kn, double ks = 0, double mu = 0);
+/// Settings for closed-form checks: no damping, no gravity; fixed_dt > 0 fixes the step.
+dem::SimulationSettings undamped(double fixed_dt = 0, bool allow_unstable = false);
+dem::Simulation linear_simulation(dem::ParticleStore p, dem::SimulationSettings s, dem::WallSet w = {});
 } // namespace verify

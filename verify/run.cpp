@@ -1,6 +1,7 @@
 #include "run.h"
 
 #include "output.h"
+#include "paraview.h"
 
 #include <omp.h>
 
@@ -53,6 +54,32 @@ void RunDirectory::write_summary(nlohmann::json summary) const
 {
   summary["provenance"] = provenance_;
   write_atomically(path("summary.json"), summary.dump(2) + "\n");
+}
+
+RunFiles::RunFiles(const RunOptions &options, const Deck &deck, int threads, long long seed,
+                   const std::string &convention, bool paraview)
+{
+  if (options.out_dir.empty())
+    return;
+  dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed);
+  breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear",
+                                        std::vector<std::string>{"time_s", "first", "second", "mode"});
+  if (paraview)
+    paraview_ = std::make_unique<ParaviewWriter>(dir_->path("paraview"));
+}
+
+RunFiles::~RunFiles() = default;
+
+void RunFiles::drain_breaks(dem::Simulation &sim)
+{
+  const std::vector<dem::BondBreak> breaks = sim.take_breaks();
+  if (breaks.empty())
+    return;
+  if (breaks_)
+    for (const dem::BondBreak &b : breaks)
+      breaks_->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
+  if (paraview_)
+    paraview_->add_breaks(sim, breaks);
 }
 
 int apply_threads(const RunOptions &options)

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <memory>
 #include <string>
 
 namespace verify
@@ -52,6 +53,30 @@ public:
 private:
   std::string dir_;
   nlohmann::json provenance_;
+};
+
+class ParaviewWriter;
+class CsvSeries;
+
+/// The files a DEM run writes besides its series: the run directory (when
+/// an output directory is given), the bond-break log and, on request,
+/// ParaView frames.  Without an output directory everything is a no-op.
+class RunFiles
+{
+public:
+  RunFiles(const RunOptions &options, const Deck &deck, int threads, long long seed,
+           const std::string &convention, bool paraview);
+  ~RunFiles();
+  RunDirectory *directory() { return dir_.get(); }
+  ParaviewWriter *paraview() { return paraview_.get(); }
+  /// Takes the simulation's new bond breaks into bond_breaks.csv and the
+  /// ParaView break log.
+  void drain_breaks(dem::Simulation &sim);
+
+private:
+  std::unique_ptr<RunDirectory> dir_;
+  std::unique_ptr<CsvSeries> breaks_;
+  std::unique_ptr<ParaviewWriter> paraview_;
 };
 
 /// Records a fault into a status (from a NumericalFault).

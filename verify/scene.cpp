@@ -300,23 +300,18 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
                              "wx_radps", "wy_radps", "wz_radps", "fx_n", "fy_n", "fz_n"});
   result.contacts = Series({"time_s", "first", "second", "overlap_m", "normal_force_n", "shear_force_n",
                             "shear_x_n", "shear_y_n", "shear_z_n", "bonded", "touching"});
-  std::unique_ptr<RunDirectory> dir;
-  std::unique_ptr<CsvSeries> breaks_csv;
-  std::unique_ptr<ParaviewWriter> paraview;
   const std::string convention = "demvv scene '" + deck.name() + "': SI units, compression positive";
-  if (!options.out_dir.empty())
+  RunFiles files(options, deck, threads, deck.integer("bonds/seed"), convention, deck.flag("output/paraview"));
+  RunDirectory *dir = files.directory();
+  ParaviewWriter *paraview = files.paraview();
+  if (dir)
   {
-    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, deck.integer("bonds/seed"));
     result.series.stream_to(dir->path("series.csv"), convention);
     if (!tracked.empty())
       result.particles.stream_to(dir->path("particles.csv"), convention + "; velocities at t - dt/2");
     if (!pairs.empty())
       result.contacts.stream_to(dir->path("contacts.csv"),
                                 convention + "; normal force > 0 in compression, force on the second ball");
-    breaks_csv = std::make_unique<CsvSeries>(dir->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear",
-                                             std::vector<std::string>{"time_s", "first", "second", "mode"});
-    if (deck.flag("output/paraview"))
-      paraview = std::make_unique<ParaviewWriter>(dir->path("paraview"));
   }
 
   const double duration = deck.real("run/duration");
@@ -380,21 +375,13 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
     }
     result.series.add(std::move(row));
   };
-  const auto drain_breaks = [&]() {
-    const std::vector<dem::BondBreak> breaks = sim.take_breaks();
-    if (breaks_csv)
-      for (const dem::BondBreak &b : breaks)
-        breaks_csv->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
-    if (paraview)
-      paraview->add_breaks(sim, breaks);
-  };
 
   try
   {
     for (;;)
     {
       sim.compute_forces();
-      drain_breaks();
+      files.drain_breaks(sim);
       const bool last = sim.time() >= duration;
       const bool due = last || sim.time() >= next_output;
       if (due)

@@ -72,7 +72,7 @@ namespace
 const std::vector<std::string> series_columns = {
   "time_s", "axial_strain", "axial_stress_pa", "axial_stress_top_pa", "axial_stress_bottom_pa",
   "radial_strain", "bonds_broken_fraction", "bonds_broken_tension", "bonds_broken_shear",
-  "coordination_number", "porosity", "unbalanced_force_ratio", "inertial_number", "time_step_s",
+  "coordination_number", "coordination_number_spheres", "porosity_spheres", "unbalanced_force_ratio", "inertial_number", "time_step_s",
   "kinetic_energy_j", "strain_energy_j", "friction_dissipated_j", "damping_dissipated_j",
   "bond_energy_released_j", "boundary_work_j", "energy_residual_j"};
 } // namespace
@@ -123,21 +123,14 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
   const double strain_rate = test.final_speed() / height0;
 
   result.series = Series(series_columns);
-  std::unique_ptr<RunDirectory> dir;
-  std::unique_ptr<CsvSeries> breaks_csv;
-  std::unique_ptr<ParaviewWriter> paraview;
   const std::string convention =
     "demvv uniaxial '" + deck.name() + "': SI units; compression positive for axial stress and strain; "
     "radial strain = -(r - r0)/r0; sample: " + specimen.description;
-  if (!options.out_dir.empty())
-  {
-    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, deck.integer("bonds/seed"));
+  RunFiles files(options, deck, threads, deck.integer("bonds/seed"), convention, deck.flag("output/paraview"));
+  RunDirectory *dir = files.directory();
+  ParaviewWriter *paraview = files.paraview();
+  if (dir)
     result.series.stream_to(dir->path("series.csv"), convention);
-    breaks_csv = std::make_unique<CsvSeries>(dir->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear",
-                                             std::vector<std::string>{"time_s", "first", "second", "mode"});
-    if (deck.flag("output/paraview"))
-      paraview = std::make_unique<ParaviewWriter>(dir->path("paraview"));
-  }
 
   const double strain_interval = deck.real("output/strain interval");
   const double frame_interval = deck.real("output/paraview strain interval");
@@ -153,12 +146,7 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
     {
       test.drive(sim);
       sim.compute_forces();
-      const std::vector<dem::BondBreak> breaks = sim.take_breaks();
-      if (breaks_csv)
-        for (const dem::BondBreak &b : breaks)
-          breaks_csv->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
-      if (paraview)
-        paraview->add_breaks(sim, breaks);
+      files.drain_breaks(sim);
 
       const double strain = test.axial_strain(sim);
       const bool last = test.finished(sim);
@@ -171,12 +159,15 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
         const double broken_s = double(sim.bonds_broken(dem::BreakMode::shear));
         const double porosity = 0.5 * (dem::porosity(sim.particles(), sim.contacts(), spheres[0]) +
                                        dem::porosity(sim.particles(), sim.contacts(), spheres[1]));
+        const double sphere_coordination =
+          0.5 * (dem::coordination_number(sim.particles(), sim.contacts(), spheres[0]) +
+                 dem::coordination_number(sim.particles(), sim.contacts(), spheres[1]));
         // Inertial number I = strain rate * d * sqrt(rho / p), p = sigma/3
         // for uniaxial stress; quasi-static when I << 1e-3.
         const double inertial = stress > 0 ? strain_rate * 2 * mean_radius * std::sqrt(density / (stress / 3)) : 0.0;
         row = {sim.time(), strain, stress, s_top, s_bottom, gauges.radial_strain(sim.particles()),
                (broken_t + broken_s) / installed, broken_t, broken_s,
-               dem::coordination_number(sim.particles(), sim.contacts()), porosity,
+               dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination, porosity,
                dem::unbalanced_force_ratio(sim.particles(), sim.contacts()), inertial, sim.time_step()};
         next_row = strain + strain_interval;
         if (paraview && (last || strain >= next_frame))

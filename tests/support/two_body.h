@@ -1,50 +1,28 @@
-// Small systems for tests, built in a line or three (STYLE rule 8).
+// Small systems for tests, built in a line or three (STYLE rule 8), on the
+// builders the verification checks use (verify/checks_support.h).
 #pragma once
 
-#include "contact_model.h"
-#include "simulation.h"
-
-#include <utility>
+#include "checks_support.h"
 
 namespace demtest
 {
 using dem::Vec3;
-
-/// A ball of radius r and density 2650 kg/m^3 with the given stiffnesses.
-inline dem::BallSpec ball(const Vec3 &x, double r, double kn, double ks = 0, double mu = 0)
-{
-  dem::BallSpec b;
-  b.position = x;
-  b.radius = r;
-  b.kn = kn;
-  b.ks = ks;
-  b.friction = mu;
-  return b;
-}
-
-/// Settings for closed-form checks: no damping, no gravity.
-inline dem::SimulationSettings undamped(double fixed_dt = 0)
-{
-  dem::SimulationSettings s;
-  s.local_damping = 0;
-  s.fixed_time_step = fixed_dt;
-  return s;
-}
+using verify::ball;
+using verify::undamped;
 
 inline dem::Simulation make_sim(dem::ParticleStore p, dem::WallSet w = {},
                                 dem::SimulationSettings s = undamped())
 {
-  return dem::Simulation(std::move(p), std::move(w), dem::make_contact_model("linear", {}), s);
+  return verify::linear_simulation(std::move(p), s, std::move(w));
 }
 
 /// Two balls along x, the second one at centre distance d from the first.
-inline dem::Simulation two_balls(double r, double d, double kn, double ks = 0, double mu = 0,
-                                 dem::SimulationSettings s = undamped())
+inline dem::Simulation two_balls(double r, double d, double kn, double ks = 0, double mu = 0)
 {
   dem::ParticleStore p;
   p.add(ball(Vec3::Zero(), r, kn, ks, mu));
   p.add(ball(Vec3(d, 0, 0), r, kn, ks, mu));
-  return make_sim(std::move(p), {}, s);
+  return make_sim(std::move(p));
 }
 
 /// A horizontal plane wall at z = 0 facing up.
