@@ -64,6 +64,16 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
   changed_ = true;
 }
 
+void ContactTable::assign(std::vector<Contact> entries, const ParticleStore &particles,
+                          const RetiredContactEnergy &retired)
+{
+  contacts_ = std::move(entries);
+  retired_ = retired;
+  origin_.assign(contacts_.size(), -1);
+  rebuild_adjacency(particles.size());
+  changed_ = true;
+}
+
 Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
 {
   if (i > j)

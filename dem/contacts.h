@@ -77,6 +77,9 @@ public:
   /// Merges sorted candidates with the current entries (see header note).
   void rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles);
 
+  /// Replaces the table by saved entries (sorted by pair) and retired energy.
+  void assign(std::vector<Contact> entries, const ParticleStore &particles, const RetiredContactEnergy &retired);
+
   /// Adds pair (i, j) if absent and returns its entry.  For set-up only (O(n)).
   Contact &ensure(Index i, Index j, const ParticleStore &particles);
   /// Entry of pair (i, j) or nullptr; binary search.

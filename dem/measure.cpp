@@ -92,6 +92,67 @@ double unbalanced_force_ratio(const ParticleStore &particles, const ContactTable
   return (resultant / free_balls) / (contact / touching);
 }
 
+Tensor3 average_stress(const Simulation &sim, double volume)
+{
+  const ParticleStore &p = sim.particles();
+  Tensor3 sum = Tensor3::Zero();
+  const auto &loads = sim.contacts().loads();
+  for (std::size_t c = 0; c < sim.contacts().size(); ++c)
+  {
+    const Contact &k = sim.contacts()[c];
+    if (!k.state.touching)
+      continue;
+    sum += loads[c].force * (p.position[k.second] - p.position[k.first]).transpose();
+  }
+  const WallSet &walls = sim.walls();
+  for (WallIndex w = 0; w < walls.size(); ++w)
+    for (Index b = 0; b < p.size(); ++b)
+    {
+      const ContactState &s = walls.state(w, b);
+      if (!walls[w].enabled || !s.touching)
+        continue;
+      const Vec3 force = s.normal_force * s.normal + s.shear_force;
+      sum += force * ((p.radius[b] - 0.5 * s.overlap) * s.normal).transpose();
+    }
+  return 0.5 * (sum + sum.transpose()) / volume;
+}
+
+double mean_stress(const Simulation &sim, double volume)
+{
+  return average_stress(sim, volume).trace() / 3.0;
+}
+
+Tensor3 fabric_tensor(const ParticleStore &particles, const ContactTable &contacts)
+{
+  Tensor3 sum = Tensor3::Zero();
+  std::size_t n = 0;
+  for (const Contact &c : contacts.entries())
+  {
+    if (!c.state.touching)
+      continue;
+    const Vec3 d = (particles.position[c.second] - particles.position[c.first]).normalized();
+    sum += d * d.transpose();
+    ++n;
+  }
+  return n > 0 ? Tensor3(sum / static_cast<double>(n)) : Tensor3(Tensor3::Identity() / 3.0);
+}
+
+std::vector<int> contacts_per_ball(const Simulation &sim)
+{
+  std::vector<int> count(static_cast<std::size_t>(sim.particles().size()), 0);
+  for (const Contact &c : sim.contacts().entries())
+    if (c.state.touching)
+    {
+      ++count[c.first];
+      ++count[c.second];
+    }
+  for (WallIndex w = 0; w < sim.walls().size(); ++w)
+    for (Index b = 0; b < sim.particles().size(); ++b)
+      if (sim.walls()[w].enabled && sim.walls().state(w, b).touching)
+        ++count[b];
+  return count;
+}
+
 RadialGauges::RadialGauges(const ParticleStore &particles, const Vec3 &axis_point, double z_mid,
                            double height, double thickness)
   : axis_point_(axis_point)

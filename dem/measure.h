@@ -12,6 +12,12 @@
 //    of thickness t * H; radial strain is their mean relative change of
 //    distance from the axis.
 //  - Unbalanced-force ratio: mean resultant on free balls / mean contact force.
+//  - Average stress (Love-Weber): sigma = (1/V) sum_c F_c (x) l_c over the
+//    force-carrying contacts, F_c the force on the second entity and l_c the
+//    branch vector from the first to the second (for a wall contact, from
+//    the contact point to the ball centre); compression positive.
+//  - Fabric tensor: (1/N_c) sum_c n_c (x) n_c over ball-ball contacts; its
+//    deviatoric part is zero for an isotropic packing.
 //
 // Sign convention (SPEC §2): compression positive.  Axial strain
 // (H0 - H)/H0 > 0 when shortening; radial strain -(r - r0)/r0, so a bulging
@@ -48,6 +54,21 @@ double coordination_number(const ParticleStore &particles, const ContactTable &c
 /// Mean |resultant force| on free balls divided by the mean contact force
 /// magnitude (0 when no contact carries force).
 double unbalanced_force_ratio(const ParticleStore &particles, const ContactTable &contacts);
+
+using Tensor3 = Eigen::Matrix3d;
+
+/// Average stress tensor over a volume V [Pa], compression positive,
+/// symmetrised; includes ball-wall contacts.
+Tensor3 average_stress(const Simulation &sim, double volume);
+
+/// Mean of the diagonal of average_stress [Pa].
+double mean_stress(const Simulation &sim, double volume);
+
+/// Fabric tensor of the ball-ball contacts that carry force (identity/3 if none).
+Tensor3 fabric_tensor(const ParticleStore &particles, const ContactTable &contacts);
+
+/// Contacts of each ball, ball-ball and ball-wall, that carry force.
+std::vector<int> contacts_per_ball(const Simulation &sim);
 
 /// Radial-strain gauges on the circumference of a cylindrical sample.
 class RadialGauges

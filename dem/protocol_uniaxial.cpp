@@ -6,7 +6,7 @@ namespace dem
 {
 UniaxialCompression::UniaxialCompression(const Simulation &sim, WallIndex bottom, WallIndex top,
                                          double area, const UniaxialSettings &settings)
-  : bottom_(bottom), top_(top), area_(area), height0_(0), speed_(0), settings_(settings)
+  : bottom_(bottom), top_(top), area_(area), height0_(0), speed_(0), start_time_(sim.time()), settings_(settings)
 {
   height0_ = separation(sim);
   speed_ = settings.platen_speed > 0 ? settings.platen_speed : settings.strain_rate * height0_;
@@ -30,7 +30,8 @@ double UniaxialCompression::platen_stress(const Simulation &sim, WallIndex w) co
 
 void UniaxialCompression::drive(Simulation &sim) const
 {
-  const double ramp = settings_.ramp_time > 0 ? std::min(1.0, sim.time() / settings_.ramp_time) : 1.0;
+  const double elapsed = sim.time() - start_time_;
+  const double ramp = settings_.ramp_time > 0 ? std::min(1.0, elapsed / settings_.ramp_time) : 1.0;
   const double speed = speed_ * ramp;
   Wall &top = sim.walls()[top_];
   Wall &bottom = sim.walls()[bottom_];

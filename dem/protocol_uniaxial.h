@@ -48,7 +48,7 @@ private:
   double platen_stress(const Simulation &sim, WallIndex w) const;
 
   WallIndex bottom_, top_;
-  double area_, height0_, speed_;
+  double area_, height0_, speed_, start_time_;
   UniaxialSettings settings_;
 };
 } // namespace dem

@@ -25,6 +25,61 @@ Simulation::Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<C
   breaks_.reserve(1024);
 }
 
+namespace
+{
+WallSet assemble_walls(const std::vector<Wall> &walls, Index particles, std::vector<ContactState> history)
+{
+  WallSet set;
+  for (const Wall &w : walls)
+    set.add(w);
+  set.resize_history(particles);
+  set.restore_history(std::move(history));
+  return set;
+}
+} // namespace
+
+Simulation::Simulation(Snapshot snap, std::unique_ptr<ContactModel> model, SimulationSettings settings)
+  : Simulation(std::move(snap.particles), assemble_walls(snap.walls, snap.particles.size(), std::move(snap.wall_history)),
+               std::move(model), settings)
+{
+  contacts_.assign(std::move(snap.contacts), particles_, snap.clock.retired);
+  const SimulationClock &c = snap.clock;
+  time_ = c.time;
+  step_ = c.steps;
+  dt_prev_ = c.last_time_step;
+  if (c.ball_energy.size() == ball_energy_.size())
+    ball_energy_ = c.ball_energy;
+  initial_energy_ = c.initial_energy;
+  initial_recorded_ = c.initial_recorded;
+  removed_wall_strain_ = c.removed_wall_strain;
+  removed_wall_friction_ = c.removed_wall_friction;
+  broken_tension_ = c.broken_tension;
+  broken_shear_ = c.broken_shear;
+}
+
+Snapshot Simulation::snapshot() const
+{
+  Snapshot s;
+  s.particles = particles_;
+  for (WallIndex w = 0; w < walls_.size(); ++w)
+    s.walls.push_back(walls_[w]);
+  s.wall_history = walls_.history();
+  s.contacts = contacts_.entries();
+  SimulationClock &c = s.clock;
+  c.time = time_;
+  c.steps = step_;
+  c.last_time_step = dt_prev_;
+  c.ball_energy = ball_energy_;
+  c.initial_energy = initial_energy_;
+  c.initial_recorded = initial_recorded_;
+  c.removed_wall_strain = removed_wall_strain_;
+  c.removed_wall_friction = removed_wall_friction_;
+  c.broken_tension = broken_tension_;
+  c.broken_shear = broken_shear_;
+  c.retired = contacts_.retired();
+  return s;
+}
+
 void Simulation::step()
 {
   compute_forces();

@@ -64,11 +64,47 @@ public:
   Index particle; ///< -1 when no single ball is to blame
 };
 
+/// Energy bookkeeping of one ball (energy.h).
+struct BallEnergy
+{
+  double boundary = 0, body = 0, damping = 0, kinetic = 0; ///< J
+};
+
+/// Everything beyond balls, walls and contacts that a run carries from step
+/// to step; with them it makes a Snapshot from which a run continues
+/// exactly as if it had never stopped.
+struct SimulationClock
+{
+  double time = 0;           ///< s
+  long steps = 0;
+  double last_time_step = 0; ///< s, the step that produced the current positions
+  std::vector<BallEnergy> ball_energy;
+  double initial_energy = 0; ///< J
+  bool initial_recorded = false;
+  double removed_wall_strain = 0, removed_wall_friction = 0; ///< J
+  std::size_t broken_tension = 0, broken_shear = 0;
+  RetiredContactEnergy retired;
+};
+
+struct Snapshot
+{
+  ParticleStore particles;
+  std::vector<Wall> walls;
+  std::vector<ContactState> wall_history; ///< (wall, ball) wall-major
+  std::vector<Contact> contacts;          ///< sorted by (first, second)
+  SimulationClock clock;
+};
+
 class Simulation
 {
 public:
   Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<ContactModel> model,
              SimulationSettings settings);
+  /// Continues a saved run (see Snapshot).
+  Simulation(Snapshot snapshot, std::unique_ptr<ContactModel> model, SimulationSettings settings);
+
+  /// The state a run can be continued from, exactly.
+  Snapshot snapshot() const;
 
   /// One full step.  Equivalent to compute_forces(); integrate(false).
   void step();
@@ -146,10 +182,6 @@ private:
   std::vector<double> wall_power_; ///< W, sum over walls of F_wall->ball . v_wall
   std::vector<WallIndex> active_walls_; ///< enabled walls, refreshed each step
 
-  struct BallEnergy
-  {
-    double boundary = 0, body = 0, damping = 0, kinetic = 0;
-  };
   std::vector<BallEnergy> ball_energy_;
   double initial_energy_ = 0;
   double removed_wall_strain_ = 0, removed_wall_friction_ = 0;

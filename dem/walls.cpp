@@ -95,8 +95,19 @@ void WallSet::advance(double dt)
   }
 }
 
+void WallSet::restore_history(std::vector<ContactState> history)
+{
+  if (history.size() != history_.size())
+    return; // a snapshot from another layout: start without wall history
+  history_ = std::move(history);
+  for (std::size_t k = 0; k < history_.size(); ++k)
+    engaged_[k] = history_[k].touching ? 1 : 0;
+}
+
 void WallSet::resize_history(Index particles)
 {
+  if (stride_ == static_cast<std::size_t>(particles) && history_.size() == stride_ * walls_.size())
+    return; // already laid out for these balls: keep the history
   stride_ = static_cast<std::size_t>(particles);
   history_.assign(stride_ * walls_.size(), ContactState{});
   engaged_.assign(stride_ * walls_.size(), 0);

@@ -79,10 +79,15 @@ public:
   /// Moves every wall by its velocity over dt.
   void advance(double dt);
 
-  /// Per (wall, particle) contact history; resize_history() clears it.
+  /// Per (wall, particle) contact history; resize_history() lays it out
+  /// (empty) for a number of balls, and keeps it if already laid out so.
   void resize_history(Index particles);
   ContactState &state(WallIndex w, Index p) { return history_[slot(w, p)]; }
   const ContactState &state(WallIndex w, Index p) const { return history_[slot(w, p)]; }
+  /// All contact histories, wall-major, and their restoration (snapshots).
+  const std::vector<ContactState> &history() const { return history_; }
+  void restore_history(std::vector<ContactState> history);
+
   /// Whether ball p touched wall w at the last update: a byte per pair, so
   /// the force pass can skip distant balls without reading their history.
   bool engaged(WallIndex w, Index p) const { return engaged_[slot(w, p)] != 0; }

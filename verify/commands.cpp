@@ -2,6 +2,7 @@
 
 #include "check.h"
 #include "deck.h"
+#include "prepare.h"
 #include "output.h"
 #include "report.h"
 #include "scene.h"
@@ -27,6 +28,7 @@ int report(const std::string &out_dir, const RunStatus &status)
 
 int run_scene_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_scene(deck, o).status); }
 int run_uniaxial_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_uniaxial(deck, o).status); }
+int run_prepare_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_prepare(deck, o).status); }
 
 struct Runner
 {
@@ -37,6 +39,7 @@ struct Runner
 const Runner runners[] = {
   {"scene", &run_scene_deck},
   {"uniaxial", &run_uniaxial_deck},
+  {"prepare", &run_prepare_deck},
 };
 } // namespace
 

@@ -3,6 +3,7 @@
 #include "analysis.h"
 #include "deck_sections.h"
 #include "paraview.h"
+#include "prepare.h"
 
 #include "measure.h"
 #include "protocol_uniaxial.h"
@@ -10,7 +11,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace verify
 {
@@ -23,17 +26,20 @@ void declare_uniaxial(DeckSchema &s)
 {
   s.text("title", "", "One line saying what this test is for (copied to summary.json).");
   s.enter("sample");
-  s.choice("source", "lattice", {"lattice"},
-           "Where the balls come from: 'lattice' builds a regular lattice cylinder (a verification "
-           "stand-in until prepared random samples are available).");
-  s.choice("lattice", "fcc", {"fcc", "sc"}, "Lattice of the stand-in sample: face-centred or simple cubic.");
+  s.choice("source", "lattice", {"lattice", "file"},
+           "Where the balls come from: 'file' loads a prepared sample (thesis ch. 5); 'lattice' builds a "
+           "regular lattice cylinder, a verification sample only.");
+  s.text("file", "",
+         "For source = file: a sample file (.json) written by a prepare run, or a prepare deck (.prm) whose "
+         "sample is prepared on first use and cached under runs/samples/; relative to this deck.");
+  s.choice("lattice", "fcc", {"fcc", "sc"}, "For source = lattice: face-centred or simple cubic.");
   s.real("ball radius", 0.885e-3, 0, inf, "m", "Radius of every ball (thesis: 1.77 mm diameter sand).", true);
   s.real("diameter", 0.0311, 0, inf, "m", "Target diameter of the sample (the rim balls fit inside).", true);
   s.real("height", 0.0311, 0, inf, "m", "Target height of the sample (the balls fit inside).", true);
   s.leave();
   declare_ball_properties(s);
   declare_contact_law(s);
-  declare_bonds(s, {"touching", "none"});
+  declare_bonds(s, {"touching", "sample", "none"});
   s.enter("platens");
   declare_wall_properties(s, 1.2e7, 0, 0);
   s.leave();
@@ -57,6 +63,9 @@ void declare_uniaxial(DeckSchema &s)
          "Radius of the two measurement spheres (on the axis at 1/3 and 2/3 of the height) as a fraction of "
          "the sample diameter.",
          true);
+  s.real_list("gauge study", "", 0, 20, "-",
+              "Extra gauge thicknesses (fractions of the height) whose radial strain is recorded beside that of "
+              "all circumference balls, as in thesis Fig. 5.13; empty for none.  Writes gauge_study.csv.");
   s.real_list("fit window", "0, 0.002", 2, 2, "-",
               "Axial strain interval over which the initial modulus and Poisson's ratio are fitted.");
   s.leave();
@@ -69,6 +78,38 @@ void declare_uniaxial(DeckSchema &s)
 
 namespace
 {
+std::string num_text(double v)
+{
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+/// gauge_study.csv: for each band, its gauges and its radial strain's error
+/// against all circumference balls, at the end and averaged over the rows
+/// past a tenth of the final circumference strain (thesis Fig. 5.13).
+void write_gauge_study(const std::string &path, const Series &series, const std::vector<double> &study,
+                       const std::vector<dem::RadialGauges> &gauges, const std::string &convention)
+{
+  const auto all = series.column("radial_strain_circumference");
+  CsvSeries out(path, convention + "; error = 100 (gauge - circumference) / circumference",
+                {"gauge_thickness", "gauges", "error_at_end_percent", "mean_abs_error_percent"});
+  for (std::size_t k = 0; k < study.size(); ++k)
+  {
+    const auto band = series.column("radial_strain_gauge_" + num_text(study[k]));
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t r = 0; r < all.size(); ++r)
+      if (std::abs(all[r]) > 0.1 * std::abs(all.back()) && all[r] != 0)
+      {
+        sum += std::abs(100 * (band[r] - all[r]) / all[r]);
+        ++n;
+      }
+    const double at_end = all.back() != 0 ? 100 * (band.back() - all.back()) / all.back() : std::nan("");
+    out.write({study[k], double(gauges[k].size()), at_end, n ? sum / n : std::nan("")});
+  }
+}
+
 const std::vector<std::string> series_columns = {
   "time_s", "axial_strain", "axial_stress_pa", "axial_stress_top_pa", "axial_stress_bottom_pa",
   "radial_strain", "bonds_broken_fraction", "bonds_broken_tension", "bonds_broken_shear",
@@ -77,9 +118,18 @@ const std::vector<std::string> series_columns = {
   "bond_energy_released_j", "boundary_work_j", "energy_residual_j"};
 } // namespace
 
-UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
+namespace
 {
-  const int threads = apply_threads(options);
+/// The specimen of a uniaxial test, its simulation and its bonds.
+struct Setup
+{
+  std::unique_ptr<dem::Simulation> sim;
+  dem::Specimen cell; ///< wall indices, diameter, height, description
+  dem::BondReport bonds;
+};
+
+Setup lattice_setup(const Deck &deck)
+{
   dem::Lattice lattice;
   dem::parse_lattice(deck.text("sample/lattice"), lattice);
   dem::BallSpec ball;
@@ -90,21 +140,89 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
   if (specimen.particles.size() < 2)
     deck.fail("sample/diameter", "the sample holds fewer than two balls of the given radius: expected a "
                                  "diameter and height of several ball diameters");
+  Setup s;
+  s.sim = std::make_unique<dem::Simulation>(std::move(specimen.particles), std::move(specimen.walls),
+                                            read_contact_law(deck), read_motion(deck));
+  s.cell = std::move(specimen);
+  s.sim->refresh_contacts();
+  if (deck.text("bonds/install") == "touching")
+    s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), read_bond_settings(deck));
+  else if (deck.text("bonds/install") == "sample")
+    deck.fail("bonds/install", "a lattice sample has no bonds of its own: expected touching or none");
+  return s;
+}
+
+/// A prepared sample: its balls get the deck's properties, its platens the
+/// deck's platen properties, its lateral wall (if still there) goes, and the
+/// clock restarts at zero for the new test.
+Setup sample_setup(const Deck &deck)
+{
+  if (deck.text("sample/file").empty())
+    deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
+  SampleFile file = load_or_prepare_sample(deck.file("sample/file"), "runs/samples");
+  dem::Snapshot &snap = file.snapshot;
+  dem::BallSpec ball;
+  apply_ball_properties(deck, ball);
+  dem::ParticleStore &p = snap.particles;
+  for (dem::Index b = 0; b < p.size(); ++b)
+  {
+    p.density[b] = ball.density;
+    p.kn[b] = ball.kn;
+    p.ks[b] = ball.ks;
+    p.friction[b] = ball.friction;
+    p.set_radius(b, p.radius[b]); // mass and inertia from the deck's density
+  }
+  for (dem::Contact &c : snap.contacts)
+    c.params = dem::ContactTable::pair_params(p, c.first, c.second);
+  const dem::WallProps platen = read_wall_properties(deck, "platens");
+  snap.walls[file.cell.bottom].props = platen;
+  snap.walls[file.cell.top].props = platen;
+  const double last_step = snap.clock.last_time_step;
+  snap.clock = dem::SimulationClock{};
+  snap.clock.last_time_step = last_step;
+
+  Setup s;
+  s.sim = std::make_unique<dem::Simulation>(std::move(snap), read_contact_law(deck), read_motion(deck));
+  if (file.cell.lateral >= 0 && s.sim->walls()[file.cell.lateral].enabled)
+    s.sim->set_wall_enabled(file.cell.lateral, false);
+  const std::string mode = deck.text("bonds/install");
+  if (mode != "sample")
+  {
+    for (dem::Contact &c : s.sim->contacts().entries())
+      c.bond = dem::ContactBond{};
+    if (mode == "touching")
+      s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), read_bond_settings(deck));
+  }
+  else
+    for (const dem::Contact &c : s.sim->contacts().entries())
+      s.bonds.bonded += c.bond.intact ? 1 : 0;
+  s.cell = std::move(file.cell);
+  std::ostringstream d;
+  d << "prepared sample " << deck.text("sample/file") << " of " << s.sim->particles().size() << " balls";
+  if (file.preparation.contains("solid_fraction_cell"))
+    d << " (cell solid fraction " << file.preparation["solid_fraction_cell"].get<double>() << ", coordination "
+      << file.preparation["coordination_number"].get<double>() << ")";
+  s.cell.description = d.str();
+  return s;
+}
+} // namespace
+
+UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
   const double window_lo = deck.real_list("measurement/fit window")[0];
   const double window_hi = deck.real_list("measurement/fit window")[1];
   if (!(window_hi > window_lo))
     deck.fail("measurement/fit window", "expected two increasing strains");
+  Setup setup = deck.text("sample/source") == "file" ? sample_setup(deck) : lattice_setup(deck);
 
   UniaxialResult result;
+  const dem::Specimen &specimen = setup.cell;
   const double area = specimen.area(), height0 = specimen.height, diameter = specimen.diameter;
   const dem::WallIndex bottom = specimen.bottom, top = specimen.top;
-  result.sim = std::make_unique<dem::Simulation>(std::move(specimen.particles), std::move(specimen.walls),
-                                                 read_contact_law(deck), read_motion(deck));
+  result.sim = std::move(setup.sim);
   dem::Simulation &sim = *result.sim;
-  sim.refresh_contacts();
-  dem::BondReport bonds;
-  if (deck.text("bonds/install") == "touching")
-    bonds = dem::bond_touching_pairs(sim.contacts(), sim.particles(), read_bond_settings(deck));
+  const dem::BondReport &bonds = setup.bonds;
 
   dem::UniaxialSettings load;
   load.platen_speed = deck.text("loading/control") == "platen speed" ? deck.real("loading/platen speed") : 0;
@@ -115,6 +233,16 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
   const dem::UniaxialCompression test(sim, bottom, top, area, load);
   const dem::RadialGauges gauges(sim.particles(), dem::Vec3::Zero(), 0.5 * height0, height0,
                                  deck.real("measurement/gauge thickness"));
+  // Gauge-thickness study (thesis §5.4.3, Fig. 5.13): the same measure with
+  // bands of other thicknesses, against all balls on the circumference.
+  const std::vector<double> study = deck.real_list("measurement/gauge study");
+  for (double t : study)
+    if (!(t > 0 && t <= 1))
+      deck.fail("measurement/gauge study", "expected thicknesses in (0, 1]");
+  std::vector<dem::RadialGauges> study_gauges;
+  for (double t : study)
+    study_gauges.emplace_back(sim.particles(), dem::Vec3::Zero(), 0.5 * height0, height0, t);
+  const dem::RadialGauges circumference(sim.particles(), dem::Vec3::Zero(), 0.5 * height0, height0, 1.0 + 1e-9);
   const double sphere_r = deck.real("measurement/sphere radius") * diameter;
   const dem::MeasurementSphere spheres[2] = {{dem::Vec3(0, 0, height0 / 3), sphere_r},
                                              {dem::Vec3(0, 0, 2 * height0 / 3), sphere_r}};
@@ -122,7 +250,14 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
   const double density = deck.real("balls/density");
   const double strain_rate = test.final_speed() / height0;
 
-  result.series = Series(series_columns);
+  std::vector<std::string> columns = series_columns;
+  if (!study.empty())
+  {
+    for (double t : study)
+      columns.push_back("radial_strain_gauge_" + num_text(t));
+    columns.push_back("radial_strain_circumference");
+  }
+  result.series = Series(columns);
   const std::string convention =
     "demvv uniaxial '" + deck.name() + "': SI units; compression positive for axial stress and strain; "
     "radial strain = -(r - r0)/r0; sample: " + specimen.description;
@@ -169,6 +304,12 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
                (broken_t + broken_s) / installed, broken_t, broken_s,
                dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination, porosity,
                dem::unbalanced_force_ratio(sim.particles(), sim.contacts()), inertial, sim.time_step()};
+        if (!study.empty())
+        {
+          for (const dem::RadialGauges &g : study_gauges)
+            row.push_back(g.radial_strain(sim.particles()));
+          row.push_back(circumference.radial_strain(sim.particles()));
+        }
         next_row = strain + strain_interval;
         if (paraview && (last || strain >= next_frame))
         {
@@ -180,8 +321,8 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
       if (due)
       {
         const dem::EnergyLedger e = sim.energy();
-        row.insert(row.end(), {e.kinetic, e.strain, e.friction, e.damping, e.bond_released, e.boundary_work,
-                               e.residual()});
+        row.insert(row.begin() + static_cast<std::ptrdiff_t>(series_columns.size()) - 7,
+                   {e.kinetic, e.strain, e.friction, e.damping, e.bond_released, e.boundary_work, e.residual()});
         result.series.add(row);
       }
       if (last)
@@ -256,6 +397,8 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
     {"wall_seconds", result.status.wall_seconds},
     {"particle_steps_per_second",
      result.status.wall_seconds > 0 ? double(n) * sim.steps() / result.status.wall_seconds : 0.0}};
+  if (dir && !study.empty() && result.series.rows() > 0)
+    write_gauge_study(dir->path("gauge_study.csv"), result.series, study, study_gauges, convention);
   if (dir)
     dir->write_summary(result.summary);
   return result;

@@ -1,0 +1,172 @@
+// Sample preparation (thesis ch. 5): a small sample meets its own targets,
+// a saved sample continues exactly, the servo reaches its stress, and
+// impossible requests are refused.
+#include "checks_support.h"
+#include "deck.h"
+#include "prepare.h"
+#include "sample_file.h"
+#include "uniaxial.h"
+
+#include "measure.h"
+#include "prep_packing.h"
+#include "servo.h"
+#include "specimen.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+std::string temp_path(const std::string &name)
+{
+  const fs::path dir = fs::temp_directory_path() / "demvv_test_prepare";
+  fs::create_directories(dir);
+  return (dir / name).string();
+}
+
+verify::Deck small_prepare_deck()
+{
+  verify::Deck d = verify::Deck::defaults("prepare");
+  d.set("sample/particles", "200");
+  d.set("sample/seed", "5");
+  return d;
+}
+} // namespace
+
+TEST_CASE("a 200-ball preparation meets its own targets and feeds a uniaxial test", "[prepare]")
+{
+  const verify::Deck deck = small_prepare_deck();
+  const auto result = verify::run_prepare(deck, {"", 0, false});
+  REQUIRE_FALSE(result.status.fault);
+  const nlohmann::json &r = result.sample.preparation;
+  INFO(r.dump(1));
+  // Stage 5 target: mean stress below 1 kPa (and the network not lost).
+  CHECK(r["mean_stress_before_bonding_pa"].get<double>() <= 1e3);
+  CHECK(r["mean_stress_before_bonding_pa"].get<double>() > 0);
+  // Stage 4 target: no ball grew by more than the allowed 1 %.
+  CHECK(r["largest_expansion"].get<double>() <= 0.01 + 1e-12);
+  // Stage 6: bonds on the contacts, lateral wall gone.
+  CHECK(r["bonds"]["installed"].get<long>() > 0);
+  const dem::Snapshot &snap = result.sample.snapshot;
+  CHECK_FALSE(snap.walls[result.sample.cell.lateral].enabled);
+  // Isotropy: for n contact normals drawn isotropically the deviator of the
+  // fabric tensor has E|D|^2 = (2/3)/n; three standard deviations of that
+  // sampling noise are allowed (walls add a little real anisotropy).
+  std::size_t contacts = 0;
+  for (const dem::Contact &c : snap.contacts)
+    contacts += c.state.touching ? 1 : 0;
+  REQUIRE(contacts > 100);
+  CHECK(r["fabric_deviator_norm"].get<double>() < 3 * std::sqrt(2.0 / (3.0 * contacts)));
+
+  // The sample file is what a uniaxial deck loads.
+  const std::string file = temp_path("small_sample.json");
+  verify::write_sample(file, result.sample);
+  verify::Deck test = verify::Deck::defaults("uniaxial");
+  test.set("sample/source", "file");
+  test.set("sample/file", file);
+  test.set("loading/final strain", "0.002");
+  test.set("output/strain interval", "0.0005");
+  const auto run = verify::run_uniaxial(test, {"", 0, false});
+  REQUIRE_FALSE(run.status.fault);
+  CHECK(run.series.column("axial_stress_pa").back() > 0);
+  CHECK(run.summary["sample"]["particles"].get<long>() == 200);
+}
+
+TEST_CASE("a saved run continues exactly as if it had never stopped", "[prepare][sample]")
+{
+  // A small bonded FCC cylinder under compression: steps, saved, read back.
+  dem::BallSpec ball = verify::ball(dem::Vec3::Zero(), 0, 1.2e7, 1.2e6, 0.5);
+  dem::Specimen s = dem::lattice_specimen(dem::Lattice::face_centred_cubic, 0.885e-3, 0.008, 0.008, ball,
+                                          {1.2e7, 1.2e6, 0.3}, {}, false);
+  const dem::WallIndex top = s.top;
+  dem::Simulation a(std::move(s.particles), std::move(s.walls), dem::make_contact_model("linear", {}), {});
+  a.refresh_contacts();
+  dem::BondSettings bonds;
+  bonds.normal_strength = bonds.shear_strength = 5;
+  dem::bond_touching_pairs(a.contacts(), a.particles(), bonds);
+  a.walls()[top].velocity = dem::Vec3(0, 0, -0.05);
+  for (int k = 0; k < 400; ++k)
+    a.step();
+
+  verify::SampleFile file;
+  file.snapshot = a.snapshot();
+  file.cell.bottom = 0;
+  file.cell.top = top;
+  const std::string path = temp_path("continue.json");
+  verify::write_sample(path, file);
+  dem::Simulation b(verify::read_sample(path).snapshot, dem::make_contact_model("linear", {}), {});
+  for (int k = 0; k < 400; ++k)
+  {
+    a.step();
+    b.step();
+  }
+  REQUIRE(a.particles().size() == b.particles().size());
+  for (dem::Index p = 0; p < a.particles().size(); ++p)
+  {
+    INFO("ball " << p);
+    CHECK(a.particles().position[p] == b.particles().position[p]);
+    CHECK(a.particles().velocity[p] == b.particles().velocity[p]);
+  }
+  CHECK(a.time() == b.time());
+  CHECK(a.bonds_broken(dem::BreakMode::tension) + a.bonds_broken(dem::BreakMode::shear) ==
+        b.bonds_broken(dem::BreakMode::tension) + b.bonds_broken(dem::BreakMode::shear));
+  CHECK(a.energy().residual() == b.energy().residual());
+}
+
+TEST_CASE("servo-controlled walls bring a packing to the target stress", "[prepare][servo]")
+{
+  dem::BallSpec ball = verify::ball(dem::Vec3::Zero(), 0, 1.2e7, 1.2e6, 0);
+  dem::Specimen cell = dem::lattice_specimen(dem::Lattice::face_centred_cubic, 0.885e-3, 0.008, 0.008, ball,
+                                             {1.2e7, 0, 0}, {1.2e7, 0, 0}, true);
+  dem::Specimen view;
+  view.bottom = cell.bottom;
+  view.top = cell.top;
+  view.lateral = cell.lateral;
+  dem::Simulation sim(std::move(cell.particles), std::move(cell.walls), dem::make_contact_model("linear", {}), {});
+  dem::ServoSettings servo;
+  servo.target_stress = 1e5;
+  dem::CellStress stress;
+  for (int k = 0; k < 20000; ++k)
+  {
+    sim.compute_forces();
+    stress = dem::servo_cell(sim, view, servo);
+    sim.integrate();
+  }
+  sim.compute_forces();
+  stress = dem::cell_stress(sim, view);
+  // The servo's own convergence criterion in preparation is 1 % of the target.
+  INFO("bottom " << stress.bottom << " top " << stress.top << " lateral " << stress.lateral);
+  CHECK(stress.largest_error(1e5) < 0.01 * 1e5);
+}
+
+TEST_CASE("impossible packings and cells are refused with one line naming the key", "[prepare][deck]")
+{
+  const auto error_of = [](verify::Deck d) {
+    try
+    {
+      verify::run_prepare(d, {"", 0, false});
+    }
+    catch (const verify::DeckError &e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  verify::Deck dense = small_prepare_deck();
+  dense.set("sample/target solid fraction", "0.8");
+  const std::string m1 = error_of(std::move(dense));
+  CHECK(m1.find("sample/target solid fraction") != std::string::npos);
+  CHECK(m1.find("0.7405") != std::string::npos);
+  verify::Deck tiny = small_prepare_deck();
+  tiny.set("sample/particles", "0");
+  tiny.set("sample/diameter", "0.001");
+  tiny.set("sample/height", "0.01");
+  const std::string m2 = error_of(std::move(tiny));
+  CHECK(m2.find("too small for one ball") != std::string::npos);
+  CHECK(m2.find('\n') == std::string::npos);
+}
