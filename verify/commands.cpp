@@ -1,6 +1,9 @@
 #include "commands.h"
 
 #include "check.h"
+#include "continuum_cylinder.h"
+#include "continuum_mms.h"
+#include "continuum_ode.h"
 #include "deck.h"
 #include "output.h"
 #include "report.h"
@@ -27,6 +30,9 @@ int report(const std::string &out_dir, const RunStatus &status)
 
 int run_scene_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_scene(deck, o).status); }
 int run_uniaxial_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_uniaxial(deck, o).status); }
+int run_ode_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_burgers_ode(deck, o).status); }
+int run_cylinder_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_cylinder(deck, o).status); }
+int run_study_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_mms_deck(deck, o).status); }
 
 struct Runner
 {
@@ -37,6 +43,9 @@ struct Runner
 const Runner runners[] = {
   {"scene", &run_scene_deck},
   {"uniaxial", &run_uniaxial_deck},
+  {"burgers_ode", &run_ode_deck},
+  {"cylinder", &run_cylinder_deck},
+  {"mms", &run_study_deck},
 };
 } // namespace
 
