@@ -74,7 +74,9 @@ void coarse_mesh(Triangulation<3> &tria, const CylinderShape &s)
     z[k] = s.height * k / layers;
   GridGenerator::extrude_triangulation(quarter, z, tria);
   mark_boundary(tria, s);
-  // The lateral faces (and their edges) lie on the cylinder r = R.
+  // The cells' interiors follow a transfinite interpolation of their
+  // boundaries; the lateral faces (and their edges) lie on the cylinder r = R.
+  tria.set_all_manifold_ids(2);
   for (const auto &cell : tria.active_cell_iterators())
     for (const auto &face : cell->face_iterators())
       if (face->at_boundary() && face->boundary_id() == boundary::lateral)
@@ -86,6 +88,9 @@ void attach_manifold(Triangulation<2> & /*tria*/) {}
 void attach_manifold(Triangulation<3> &tria)
 {
   tria.set_manifold(1, CylindricalManifold<3>(Tensor<1, 3>({0., 0., 1.}), Point<3>()));
+  TransfiniteInterpolationManifold<3> interior;
+  interior.initialize(tria);
+  tria.set_manifold(2, interior);
 }
 
 bool finite(const Tensor3 &t)
