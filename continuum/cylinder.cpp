@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace continuum
 {
@@ -86,15 +87,16 @@ private:
   CylinderSpec spec_;
 };
 
-/// Writes `text` to `path` through a temporary file and a rename.
+/// Writes `text` to `path` through a temporary file and a rename, so that
+/// a reader never sees half of it.
 void write_whole_file(const std::string &path, const std::string &text)
 {
   const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << text;
-  }
-  std::rename(tmp.c_str(), path.c_str());
+  std::ofstream out(tmp);
+  out << text;
+  out.close();
+  if (!out || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error(path + ": cannot write the ParaView time series");
 }
 } // namespace
 

@@ -115,7 +115,8 @@ const std::vector<std::string> columns = {"time_s",
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 /// One compression test; the series streams to series_path when it is not empty.
-CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, const std::string &series_path)
+CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, const nlohmann::json &material,
+                        const std::string &series_path)
 {
   CylinderResult run;
   run.series = Series(columns);
@@ -180,7 +181,7 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
                   {"model", deck.text("discretisation/model")},
                   {"nominal_platen_area_m2", run.mesh.platen_area},
                   {"mesh_platen_area_m2", run.mesh.mesh_platen_area}}},
-    {"material", read_continuum_material(deck).description},
+    {"material", material},
     {"loading", {{"platens", deck.text("loading/platens")},
                  {"strain_rate_per_s", spec.strain_rate},
                  {"final_strain", spec.final_strain}}},
@@ -276,12 +277,13 @@ CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
   if (writer)
     dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, 0);
   const bool paraview = deck.flag("output/paraview") && !options.out_dir.empty();
+  const nlohmann::json material = read_continuum_material(deck).description;
 
   if (levels.empty())
   {
     if (paraview)
       spec.paraview_directory = options.out_dir + "/paraview";
-    CylinderResult run = compress(deck, spec, writer ? dir->path("series.csv") : "");
+    CylinderResult run = compress(deck, spec, material, writer ? dir->path("series.csv") : "");
     if (dir)
       dir->write_summary(run.summary);
     return run;
@@ -298,7 +300,7 @@ CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
       spec.paraview_directory = level_dir + "/paraview";
     if (writer)
       make_directories(level_dir);
-    runs.push_back(compress(deck, spec, writer ? level_dir + "/series.csv" : ""));
+    runs.push_back(compress(deck, spec, material, writer ? level_dir + "/series.csv" : ""));
     nlohmann::json &s = runs.back().summary;
     if (writer)
     {
@@ -344,7 +346,7 @@ CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
                  {"study", "grid convergence index, Celik et al. (2008); finest triplet first"},
                  {"levels", level_summaries},
                  {"gci", studies},
-                 {"material", read_continuum_material(deck).description},
+                 {"material", material},
                  {"wall_seconds", status.wall_seconds}};
   if (dir)
     dir->write_summary(out.summary);
