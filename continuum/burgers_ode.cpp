@@ -115,39 +115,14 @@ void require(int flag, const char *call)
 } // namespace
 
 // --- histories -------------------------------------------------------------
-History History::constant_rate(double rate)
-{
-  History h;
-  h.shape = Shape::constant_rate;
-  h.rate = rate;
-  return h;
-}
-
+// Fields: shape, rate, ramp time, amplitude, frequency, level.
+History History::constant_rate(double rate) { return {Shape::constant_rate, rate, 0, 0, 0, 0}; }
 History History::ramp_and_hold(double rate, double ramp_time)
 {
-  History h;
-  h.shape = Shape::ramp_and_hold;
-  h.rate = rate;
-  h.ramp_time = ramp_time;
-  return h;
+  return {Shape::ramp_and_hold, rate, ramp_time, 0, 0, 0};
 }
-
-History History::cyclic(double amplitude, double frequency)
-{
-  History h;
-  h.shape = Shape::cyclic;
-  h.amplitude = amplitude;
-  h.frequency = frequency;
-  return h;
-}
-
-History History::step(double level)
-{
-  History h;
-  h.shape = Shape::step;
-  h.level = level;
-  return h;
-}
+History History::cyclic(double amplitude, double frequency) { return {Shape::cyclic, 0, 0, amplitude, frequency, 0}; }
+History History::step(double level) { return {Shape::step, 0, 0, 0, 0, level}; }
 
 double History::value(double t) const
 {

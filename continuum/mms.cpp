@@ -43,7 +43,8 @@ public:
   Tensor<1, 2> value(const Point<2> &x) const override
   {
     const double r = x[0], z = x[1];
-    return Tensor<1, 2>({A_ * r * std::cos(a_ * r) * std::sin(b_ * z + c_), A_ * L_ * std::cos(a_ * r) * std::cos(b_ * z + c_)});
+    return Tensor<1, 2>(
+      {A_ * r * std::cos(a_ * r) * std::sin(b_ * z + c_), A_ * L_ * std::cos(a_ * r) * std::cos(b_ * z + c_)});
   }
 
   Tensor<2, 2> gradient(const Point<2> &x) const override
@@ -320,10 +321,10 @@ std::unique_ptr<Manufactured<2>> make_solution(const MmsSpec &s, std::integral_c
     return G;
   };
   return std::make_unique<Manufactured<2>>(
-    s.solid, std::make_unique<Affine<2>>(diagonal(0.4e-3, -1e-3)), std::make_unique<Affine<2>>(diagonal(0.2e-3, -0.5e-3)),
-    std::make_unique<Affine<2>>(diagonal(-0.1e-3, 0.3e-3)),
-    std::array<TimeFunction, 3>{{transcendental(1.7, 0.3, 2.3, T), transcendental(1.1, 0.5, 1.3, T),
-                                 transcendental(2.1, -0.4, 0.7, T)}},
+    s.solid, std::make_unique<Affine<2>>(diagonal(0.4e-3, -1e-3)),
+    std::make_unique<Affine<2>>(diagonal(0.2e-3, -0.5e-3)), std::make_unique<Affine<2>>(diagonal(-0.1e-3, 0.3e-3)),
+    std::array<TimeFunction, 3>{
+      {transcendental(1.7, 0.3, 2.3, T), transcendental(1.1, 0.5, 1.3, T), transcendental(2.1, -0.4, 0.7, T)}},
     R);
 }
 

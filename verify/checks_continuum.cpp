@@ -429,8 +429,10 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
     double stress = 0, radial = 0;
     compare_with_point(run, point, stress, radial);
     const std::string mesh = std::to_string(run.mesh.cells) + " cells";
-    out.metrics.push_back(bound(mesh + ": max |sigma - sigma_point| / max sigma_point", stress, 1e-9, false, patch_reason));
-    out.metrics.push_back(bound(mesh + ": max |eps_r - eps_r,point| / max |eps_r,point|", radial, 1e-9, false, patch_reason));
+    out.metrics.push_back(
+      bound(mesh + ": max |sigma - sigma_point| / max sigma_point", stress, 1e-9, false, patch_reason));
+    out.metrics.push_back(
+      bound(mesh + ": max |eps_r - eps_r,point| / max |eps_r,point|", radial, 1e-9, false, patch_reason));
   }
 
   // The 3D quarter cylinder: the same solution, its force on its own
@@ -445,9 +447,10 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
                                 " cells) vs axisymmetric: stress on the mesh's platen area",
                               relative_deviation(own_area, flat.series.column("axial_stress_pa")), 1e-9, false,
                               patch_reason));
-  out.metrics.push_back(bound("3D quarter vs axisymmetric: radial strain",
-                              relative_deviation(solid.series.column("radial_strain"), flat.series.column("radial_strain")),
-                              1e-9, false, patch_reason));
+  out.metrics.push_back(
+    bound("3D quarter vs axisymmetric: radial strain",
+          relative_deviation(solid.series.column("radial_strain"), flat.series.column("radial_strain")), 1e-9, false,
+          patch_reason));
   out.notes.push_back("3D quarter: mapped platen area / pi R^2 = " + num(1 / area_ratio) +
                       " (Q2 mapping of the circle); the nominal stresses differ by that factor");
 
@@ -477,7 +480,8 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
     const std::string tag = std::string(model) + " bulk: ";
     const char *budget = "class B: 0.1 % keeps the time error ten times below the 1 % discretisation budget of the "
                          "bonded-platen study, which uses the same step";
-    out.metrics.push_back(bound(tag + "stress error against eq. 7.18 at the deck's step", production, 1e-3, false, budget));
+    out.metrics.push_back(
+      bound(tag + "stress error against eq. 7.18 at the deck's step", production, 1e-3, false, budget));
     out.metrics.push_back(bound(tag + "radial strain error against the closed form at the deck's step", radial, 1e-3,
                                 false, budget));
     out.metrics.push_back(bound(tag + "largest |observed order in dt - 2| over the finest three steps",

@@ -56,7 +56,8 @@ void measured_elasticity(const Deck &deck, double &young, double &poisson, nlohm
   }
   for (const char *field : {"initial_modulus_pa", "poisson_ratio"})
     if (!summary.contains(field) || !summary[field].is_number())
-      deck.fail(key, std::string("expected a summary.json with a number '") + field + "' (from a completed elastic run)");
+      deck.fail(key,
+                std::string("expected a summary.json with a number '") + field + "' (from a completed elastic run)");
   young = summary["initial_modulus_pa"].get<double>();
   poisson = summary["poisson_ratio"].get<double>();
   if (!(young > 0) || !(poisson > -1 && poisson < 0.5))

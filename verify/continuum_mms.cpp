@@ -71,10 +71,11 @@ std::vector<ConvergenceTable> mms_tables(const std::vector<continuum::MmsLevel> 
     double expected;
     double continuum::MmsLevel::*error;
   };
-  const Quantity quantities[] = {{"relative L2 error of u", space ? p + 1 : 0, &continuum::MmsLevel::displacement_l2},
-                                 {"relative H1-seminorm error of u", space ? p : 0, &continuum::MmsLevel::displacement_h1},
-                                 {"relative L2 error of the stress", space ? p : 2, &continuum::MmsLevel::stress_l2},
-                                 {"relative L2 error of the Kelvin strain", space ? p : 2, &continuum::MmsLevel::kelvin_l2}};
+  const Quantity quantities[] = {
+    {"relative L2 error of u", space ? p + 1 : 0, &continuum::MmsLevel::displacement_l2},
+    {"relative H1-seminorm error of u", space ? p : 0, &continuum::MmsLevel::displacement_h1},
+    {"relative L2 error of the stress", space ? p : 2, &continuum::MmsLevel::stress_l2},
+    {"relative L2 error of the Kelvin strain", space ? p : 2, &continuum::MmsLevel::kelvin_l2}};
   std::vector<ConvergenceTable> tables;
   for (const Quantity &q : quantities)
   {

@@ -37,7 +37,8 @@ MmsResult run_mms_deck(const Deck &deck, const RunOptions &options);
 
 /// One convergence table per error (displacement L2 and H1, stress, Kelvin
 /// strain) against h or dt, with the expected orders (space: p + 1, p, p,
-/// p; time: 2 for all, the displacement being exact there, so its expected
-/// order is 0 and its error round-off).
-std::vector<ConvergenceTable> mms_tables(const std::vector<continuum::MmsLevel> &levels, const continuum::MmsSpec &spec);
+/// p; time: 2 for the stress and Kelvin strain, 0 for the displacement,
+/// which is exact there up to the solver tolerance).
+std::vector<ConvergenceTable> mms_tables(const std::vector<continuum::MmsLevel> &levels,
+                                         const continuum::MmsSpec &spec);
 } // namespace verify
