@@ -39,12 +39,34 @@ TEST_CASE("V08 energy audit of a bulk run closes within 1 %", "[verify][bulk]") 
 TEST_CASE("V09 wave front in a bonded chain travels at c0", "[verify][bulk]") { require_check("V09"); }
 TEST_CASE("V10 cell list with skin equals brute force", "[verify][engine]") { require_check("V10"); }
 TEST_CASE("V11 lattice porosity and coordination", "[verify][bulk]") { require_check("V11"); }
+TEST_CASE("V12 SUNDIALS Burger's chain matches eq. 7.18 and its superpositions", "[verify][continuum]")
+{
+  require_check("V12");
+}
+TEST_CASE("V13 SUNDIALS Burger's creep matches eq. 2.15", "[verify][continuum]") { require_check("V13"); }
+TEST_CASE("V18 affine moduli equal the contact sums over isotropic normals", "[verify][continuum]")
+{
+  require_check("V18");
+}
+TEST_CASE("V19 same-shape continuum stress is c f_B by both homogenisation routes", "[verify][continuum]")
+{
+  require_check("V19");
+}
+TEST_CASE("V20 frictionless cylinder: patch test and time order", "[verify][continuum]") { require_check("V20"); }
+TEST_CASE("V21 manufactured solutions converge at the theoretical orders", "[verify][continuum]")
+{
+  require_check("V21");
+}
+TEST_CASE("V22 bonded cylinder GCI below 1 % with monotone convergence", "[verify][continuum]")
+{
+  require_check("V22");
+}
 
 TEST_CASE("every registered check has a test above", "[verify]")
 {
   // Adding a check to the registry without a test here fails this case.
-  const std::vector<std::string> tested = {"V01", "V02", "V03", "V04", "V05", "V06",
-                                           "V07", "V08", "V09", "V10", "V11"};
+  const std::vector<std::string> tested = {"V01", "V02", "V03", "V04", "V05", "V06", "V07", "V08", "V09",
+                                           "V10", "V11", "V12", "V13", "V18", "V19", "V20", "V21", "V22"};
   for (const verify::Check &c : verify::check_registry())
   {
     INFO("check " << c.id);

@@ -5,6 +5,7 @@
 #include "check.h"
 #include "checks_bulk.h"
 #include "checks_contact.h"
+#include "checks_continuum.h"
 #include "checks_engine.h"
 
 namespace verify
@@ -60,6 +61,49 @@ const std::vector<Check> &check_registry()
      "number (eq. 5.4) of simple cubic and FCC arrays.",
      C::code_verification, 'A', "1 - pi/6, 1 - pi/(3 sqrt 2), lens volumes; Z = 6, 12",
      &check_lattice_measurements},
+    {"V12", "Burger's chain under prescribed displacement (SUNDIALS)",
+     "demvv shall integrate the Burger's chain of a contact or a material point with SUNDIALS CVODE to within 10 x "
+     "the requested relative tolerance of its closed forms under constant-velocity, ramp-and-hold, cyclic and step "
+     "displacements, with an error that tracks the tolerance from 1e-4 to 1e-12.",
+     C::code_verification, 'B',
+     "thesis eq. 7.18-7.19; by linearity its superposition (ramp and hold) and hereditary integral (eq. 7.15-7.16)",
+     &check_burgers_ode_histories},
+    {"V13", "Burger's creep (SUNDIALS)",
+     "demvv shall reproduce the creep of a Burger's contact under a constant force, and of a material point under a "
+     "constant stress, within 10 x the requested relative tolerance.",
+     C::code_verification, 'B', "thesis eq. 2.15: u = F [1/K0 + t/C_inf + (1 - exp(-t K1/C1))/K1]",
+     &check_burgers_creep},
+    {"V18", "Affine moduli of a packing",
+     "demvv shall compute the affine (Voigt) bulk and shear moduli and Poisson's ratio of an isotropic monodisperse "
+     "packing, and the same-shape Burger's solid of Burger's contacts, exactly as an affine strain imposed on "
+     "isotropically oriented contacts gives them.",
+     C::code_verification, 'A',
+     "K = phi Z kn/(6 pi R), G = phi Z (2 kn + 3 ks)/(20 pi R), nu = (kn - ks)/(4 kn + ks); contact sums over "
+     "spherical 5-designs",
+     &check_affine_moduli},
+    {"V19", "Viscoelastic network identity (continuum part)",
+     "demvv shall turn same-shape Burger's contact constants into a continuum Burger's solid, a priori (affine) or "
+     "calibrated from an elastic DEM run's E and nu, whose stress between frictionless platens is (E/k_n) f_B(t) and "
+     "whose radial strain is -nu times the axial strain.",
+     C::code_verification, 'B', "correspondence principle; f_B = thesis eq. 7.18 for one contact",
+     &check_network_identity},
+    {"V20", "Frictionless cylinder (patch test)",
+     "demvv's viscoelastic cylinder between frictionless platens shall reproduce the homogeneous response on every "
+     "mesh, axisymmetric and 3D, to solver tolerance, and converge to the 1-D closed form with order 2 in the time "
+     "step.",
+     C::code_verification, 'B', "material-point recursion of the same scheme; eq. 7.18 with the solid's uniaxial chain",
+     &check_frictionless_cylinder},
+    {"V21", "Manufactured solutions",
+     "demvv's viscoelastic cylinder shall converge to manufactured solutions at the theoretical rates: h^(p+1) in L2 "
+     "and h^p in H1 and stress for Q_p elements, dt^2 in time.",
+     C::code_verification, 'B', "method of manufactured solutions (Roache 2002; Salari & Knupp 2000)",
+     &check_manufactured_solutions},
+    {"V22", "Bonded cylinder: grid convergence index",
+     "demvv shall estimate the discretisation uncertainty of the bonded-platen cylinder's peak stress and stress at "
+     "1 % strain by Roache's grid convergence index, converging monotonically in the asymptotic range with a GCI "
+     "below 1 % on the finest mesh.",
+     C::solution_verification, 'B', "Roache's GCI, Celik et al. (2008) J. Fluids Eng. 130:078001",
+     &check_bonded_gci},
   };
   return checks;
 }

@@ -1,6 +1,9 @@
 #include "commands.h"
 
 #include "check.h"
+#include "continuum_cylinder.h"
+#include "continuum_mms.h"
+#include "continuum_ode.h"
 #include "deck.h"
 #include "prepare.h"
 #include "output.h"
@@ -29,6 +32,9 @@ int report(const std::string &out_dir, const RunStatus &status)
 int run_scene_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_scene(deck, o).status); }
 int run_uniaxial_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_uniaxial(deck, o).status); }
 int run_prepare_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_prepare(deck, o).status); }
+int run_ode_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_burgers_ode(deck, o).status); }
+int run_cylinder_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_cylinder(deck, o).status); }
+int run_study_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_mms_deck(deck, o).status); }
 
 struct Runner
 {
@@ -40,6 +46,9 @@ const Runner runners[] = {
   {"scene", &run_scene_deck},
   {"uniaxial", &run_uniaxial_deck},
   {"prepare", &run_prepare_deck},
+  {"burgers_ode", &run_ode_deck},
+  {"cylinder", &run_cylinder_deck},
+  {"mms", &run_study_deck},
 };
 } // namespace
 
