@@ -90,4 +90,21 @@ void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Ind
   c.bond.normal_strength = normal_strength;
   c.bond.shear_strength = shear_strength;
 }
+
+void scale_bond_strengths(ContactTable &table, double factor)
+{
+  for (Contact &c : table.entries())
+    if (c.bond.intact)
+    {
+      c.bond.normal_strength *= factor;
+      c.bond.shear_strength *= factor;
+    }
+}
+
+void set_break_displacement(ContactTable &table, const ParticleStore &particles, double delta_c)
+{
+  for (Contact &c : table.entries())
+    if (c.bond.intact)
+      c.bond.break_distance = (particles.position[c.second] - particles.position[c.first]).norm() + delta_c;
+}
 } // namespace dem

@@ -44,6 +44,13 @@ struct BondReport
 BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particles,
                                const BondSettings &settings);
 
+/// Multiplies the strengths of every intact bond (rate dependence, eq. 7.23).
+void scale_bond_strengths(ContactTable &table, double factor);
+
+/// Displacement criterion (appendix A): every intact bond breaks once its
+/// centre distance exceeds the present one by delta_c [m].
+void set_break_displacement(ContactTable &table, const ParticleStore &particles, double delta_c);
+
 /// Bonds one pair with the given strengths, adding it to the table if needed.
 void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Index j,
                double normal_strength, double shear_strength);

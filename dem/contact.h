@@ -16,6 +16,7 @@
 #include "types.h"
 
 #include <cmath>
+#include <limits>
 
 namespace dem
 {
@@ -40,6 +41,7 @@ struct ContactBond
   bool intact = false;
   double normal_strength = 0; ///< N, tensile strength phi_n
   double shear_strength = 0;  ///< N, shear strength phi_s
+  double break_distance = std::numeric_limits<double>::infinity(); ///< m, centre distance that breaks it (appendix A)
 };
 
 /// How a bond broke; recorded in the break log.
@@ -48,6 +50,7 @@ enum class BreakMode : std::uint8_t
   none = 0,
   tension = 1,
   shear = 2,
+  displacement = 3, ///< centre distance grew by delta_c (appendix A)
 };
 
 /// History of one contact.  Reset when the entities separate.

@@ -13,6 +13,7 @@
 
 #include "contact_resolve.h"
 #include "contacts.h"
+#include "law_burgers.h"
 #include "law_linear.h"
 #include "stability.h"
 
@@ -182,6 +183,7 @@ private:
 /// Law constants a deck can set; each law reads the ones it needs.
 struct LawParameters
 {
+  BurgersContactConstants burgers; ///< burgers, modified_burgers (Table 7.2 layout)
 };
 
 /// The registry: one row per law keyword (law_registry.cpp).

@@ -19,6 +19,9 @@
 //        unbonded: no tension; |F_s| <= mu F_n (Coulomb slip, the excess is
 //                  dissipated as friction work).
 //      A bond never breaks in compression under the normal criterion.
+//      Displacement criterion (appendix A): a bond also breaks, with both
+//      forces set to zero, when the centre distance exceeds its break
+//      distance (distance when bonded + delta_c; infinite when unused).
 //
 // Energy: friction work is F_s,new . (F_trial - F_s,new) / K^s per slipping
 // step (the slip displacement times the force that resists it); a break
@@ -64,7 +67,9 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   {
     const double twist = 0.5 * (g.spin_first + g.spin_second).dot(mid_normal) * dt;
     shear = rotate_with_contact_plane(shear, state.normal, g.normal, twist);
+    law.rotate_history(history, state.normal, g.normal, twist);
   }
+  const Vec3 shear_before = shear;
   const Vec3 shear_increment = (relative_velocity - relative_velocity.dot(g.normal) * g.normal) * dt;
 
   double fn = law.normal_force(params, g.overlap, history, dt);
@@ -84,7 +89,15 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
 
   if (bond.intact)
   {
-    if (fn < 0 && -fn >= bond.normal_strength)
+    if (g.arm_first + g.arm_second > bond.break_distance)
+    {
+      state.bond_energy += law.stored_energy(params, fn, shear, history);
+      bond.intact = false;
+      out.broke = BreakMode::displacement;
+      fn = 0;
+      shear.setZero();
+    }
+    else if (fn < 0 && -fn >= bond.normal_strength)
     {
       state.bond_energy += law.stored_energy(params, fn, shear, history);
       bond.intact = false;
@@ -118,6 +131,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
     limit_by_friction(fn);
   }
 
+  law.commit(history, g.overlap, fn, shear_before, shear, dt);
   state.normal = g.normal;
   state.normal_force = fn;
   state.overlap = g.overlap;

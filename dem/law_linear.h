@@ -48,6 +48,16 @@ public:
     return rotated_force - p.ks * shear_increment;
   }
 
+  /// No history to turn with the contact plane or to advance.
+  void rotate_history(History & /*h*/, const Vec3 & /*old_normal*/, const Vec3 & /*new_normal*/,
+                      double /*twist*/) const
+  {
+  }
+  void commit(History & /*h*/, double /*overlap*/, double /*normal_force*/, const Vec3 & /*shear_before*/,
+              const Vec3 & /*shear*/, double /*dt*/) const
+  {
+  }
+
   /// Elastic energy stored in the springs of a contact [J].
   double stored_energy(const ContactParams &p, double normal_force, const Vec3 &shear_force,
                        const History & /*h*/) const

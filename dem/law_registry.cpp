@@ -14,9 +14,21 @@ std::unique_ptr<ContactModel> make(const LawParameters & /*p*/)
   return std::make_unique<LawModel<Law>>(Law{});
 }
 
+template <class Law>
+std::unique_ptr<ContactModel> make_burgers(const LawParameters &p)
+{
+  return std::make_unique<LawModel<Law>>(Law{p.burgers});
+}
+
 const std::vector<LawEntry> table = {
   {LinearLaw::keyword, &make<LinearLaw>,
    "linear springs with per-ball stiffnesses in series (thesis eq. 3.2-3.4, 3.17-3.18)"},
+  {BurgersLaw::keyword, &make_burgers<BurgersLaw>,
+   "Burger's element (Maxwell + Kelvin) in the normal and shear directions, Crank-Nicolson update "
+   "(thesis §3.4.3, eq. 3.25-3.35); constants per contact, no series combination"},
+  {ModifiedBurgersLaw::keyword, &make_burgers<ModifiedBurgersLaw>,
+   "modified Burger's (thesis §7.2.2): elastic E_0^n in normal compression, Burger's in normal tension "
+   "and in shear"},
 };
 } // namespace
 

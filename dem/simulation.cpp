@@ -55,6 +55,7 @@ Simulation::Simulation(Snapshot snap, std::unique_ptr<ContactModel> model, Simul
   removed_wall_friction_ = c.removed_wall_friction;
   broken_tension_ = c.broken_tension;
   broken_shear_ = c.broken_shear;
+  broken_displacement_ = c.broken_displacement;
 }
 
 Snapshot Simulation::snapshot() const
@@ -76,6 +77,7 @@ Snapshot Simulation::snapshot() const
   c.removed_wall_friction = removed_wall_friction_;
   c.broken_tension = broken_tension_;
   c.broken_shear = broken_shear_;
+  c.broken_displacement = broken_displacement_;
   c.retired = contacts_.retired();
   return s;
 }
@@ -141,7 +143,7 @@ void Simulation::record_breaks()
       continue;
     const Contact &k = contacts_[c];
     breaks_.push_back({time_, k.first, k.second, loads[c].broke});
-    (loads[c].broke == BreakMode::tension ? broken_tension_ : broken_shear_) += 1;
+    ++broken_count(loads[c].broke);
   }
 }
 
@@ -417,8 +419,13 @@ std::vector<BondBreak> Simulation::take_breaks()
   return out;
 }
 
+std::size_t &Simulation::broken_count(BreakMode mode)
+{
+  return mode == BreakMode::tension ? broken_tension_ : mode == BreakMode::shear ? broken_shear_ : broken_displacement_;
+}
+
 std::size_t Simulation::bonds_broken(BreakMode mode) const
 {
-  return mode == BreakMode::tension ? broken_tension_ : broken_shear_;
+  return mode == BreakMode::tension ? broken_tension_ : mode == BreakMode::shear ? broken_shear_ : broken_displacement_;
 }
 } // namespace dem

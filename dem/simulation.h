@@ -82,7 +82,7 @@ struct SimulationClock
   double initial_energy = 0; ///< J
   bool initial_recorded = false;
   double removed_wall_strain = 0, removed_wall_friction = 0; ///< J
-  std::size_t broken_tension = 0, broken_shear = 0;
+  std::size_t broken_tension = 0, broken_shear = 0, broken_displacement = 0;
   RetiredContactEnergy retired;
 };
 
@@ -188,6 +188,7 @@ private:
   bool initial_recorded_ = false;
 
   std::vector<BondBreak> breaks_;
-  std::size_t broken_tension_ = 0, broken_shear_ = 0;
+  std::size_t broken_tension_ = 0, broken_shear_ = 0, broken_displacement_ = 0;
+  std::size_t &broken_count(BreakMode mode);
 };
 } // namespace dem

@@ -135,3 +135,22 @@ TEST_CASE("every kind's documented defaults read back as a deck", "[deck]")
     CHECK(verify::Deck::from_file(path).resolved() == d.resolved());
   }
 }
+
+TEST_CASE("bad Burger's and rate entries are refused with one line naming the key", "[deck][burgers]")
+{
+  const auto with = [](const std::string &name, const std::string &section, const std::string &entry) {
+    return write_deck(name, scene("subsection contact law\n  set law = burgers\nend\nsubsection " + section +
+                                  "\n  set " + entry + "\nend\n"));
+  };
+  require_one_line_naming(error_of(with("b1.prm", "contact law", "normal kelvin viscosity = 0")),
+                          {"b1.prm", "normal kelvin viscosity", "0"});
+  require_one_line_naming(error_of(with("b2.prm", "contact law", "shear maxwell stiffness = -1e6")),
+                          {"b2.prm", "shear maxwell stiffness", "-1e6"});
+  require_one_line_naming(error_of(with("b3.prm", "rate", "temperature = 0")), {"b3.prm", "temperature", "0"});
+  require_one_line_naming(error_of(with("b4.prm", "bonds", "break displacement = -1e-5")),
+                          {"b4.prm", "break displacement", "-1e-5"});
+  // Entries that are fine alone but not together name the missing one.
+  require_one_line_naming(error_of(with("b5.prm", "rate", "physical strain rate = 0.1")),
+                          {"b5.prm", "run strain rate"});
+  require_one_line_naming(error_of(with("b6.prm", "rate", "dependence = bonds")), {"b6.prm", "dependence"});
+}

@@ -44,6 +44,19 @@ TEST_CASE("V12 SUNDIALS Burger's chain matches eq. 7.18 and its superpositions",
   require_check("V12");
 }
 TEST_CASE("V13 SUNDIALS Burger's creep matches eq. 2.15", "[verify][continuum]") { require_check("V13"); }
+TEST_CASE("V14 the Burger's CN update is second order and flips sign in the stiff limit", "[verify][burgers]")
+{
+  require_check("V14");
+}
+TEST_CASE("V15 a two-ball Burger's pull follows eq. 7.18", "[verify][burgers]") { require_check("V15"); }
+TEST_CASE("V16 scaling both viscosities reproduces the unscaled curve, C_inf alone does not", "[verify][burgers]")
+{
+  require_check("V16");
+}
+TEST_CASE("V17 the displacement criterion breaks at delta_c at every velocity", "[verify][burgers]")
+{
+  require_check("V17");
+}
 TEST_CASE("V18 affine moduli equal the contact sums over isotropic normals", "[verify][continuum]")
 {
   require_check("V18");
@@ -66,7 +79,7 @@ TEST_CASE("every registered check has a test above", "[verify]")
 {
   // Adding a check to the registry without a test here fails this case.
   const std::vector<std::string> tested = {"V01", "V02", "V03", "V04", "V05", "V06", "V07", "V08", "V09",
-                                           "V10", "V11", "V12", "V13", "V18", "V19", "V20", "V21", "V22"};
+                                           "V10", "V11", "V12", "V13", "V14", "V15", "V16", "V17", "V18", "V19", "V20", "V21", "V22"};
   for (const verify::Check &c : verify::check_registry())
   {
     INFO("check " << c.id);

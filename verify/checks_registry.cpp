@@ -4,6 +4,7 @@
 // the metrics in checks_*.cpp.
 #include "check.h"
 #include "checks_bulk.h"
+#include "checks_burgers.h"
 #include "checks_contact.h"
 #include "checks_continuum.h"
 #include "checks_engine.h"
@@ -73,6 +74,24 @@ const std::vector<Check> &check_registry()
      "constant stress, within 10 x the requested relative tolerance.",
      C::code_verification, 'B', "thesis eq. 2.15: u = F [1/K0 + t/C_inf + (1 - exp(-t K1/C1))/K1]",
      &check_burgers_creep},
+    {"V14", "Burger's contact update (Crank-Nicolson)",
+     "demvv's Burger's contact law shall converge to the constant-velocity closed form with observed order 2, and "
+     "show its documented stiff-limit behaviour (A-stable, not L-stable) when K_k dt / (2 C_k) > 1.",
+     C::code_verification, 'B', "thesis eq. 3.25-3.35 against eq. 7.18-7.19", &check_burgers_update},
+    {"V15", "Two-ball Burger's pull",
+     "demvv shall pull two balls joined by a Burger's contact apart at constant velocity with the force of the "
+     "closed form.",
+     C::code_verification, 'B', "thesis eq. 7.18-7.19, Fig. 7.10", &check_burgers_pull},
+    {"V16", "Viscosity scaling",
+     "demvv shall give the unscaled force-displacement curve when the velocity is multiplied and both viscosities "
+     "divided by the same factor, not when C_inf alone is divided, and shall evaluate rate-dependent bond strength "
+     "at the physical rate.",
+     C::code_verification, 'B', "thesis eq. 7.21, Fig. 7.8-7.10, eq. 7.23", &check_viscosity_scaling},
+    {"V17", "Displacement criterion",
+     "demvv shall break a bonded Burger's contact when the centre distance has grown by delta_c, whatever the "
+     "velocity, with the peak force of the closed form at u = delta_c.",
+     C::code_verification, 'C', "thesis appendix A, Fig. A.1; eq. 7.18 at t = delta_c / v",
+     &check_displacement_criterion},
     {"V18", "Affine moduli of a packing",
      "demvv shall compute the affine (Voigt) bulk and shear moduli and Poisson's ratio of an isotropic monodisperse "
      "packing, and the same-shape Burger's solid of Burger's contacts, exactly as an affine strain imposed on "

@@ -1,5 +1,7 @@
 #include "deck_sections.h"
 
+#include "rate_scaling.h"
+
 #include <limits>
 
 namespace verify
@@ -20,12 +22,82 @@ void declare_contact_law(DeckSchema &s)
   }
   s.enter("contact law");
   s.choice("law", names.front(), names, help);
+  const char *directions[] = {"normal", "shear"};
+  for (const char *dir : directions)
+  {
+    const std::string what = std::string(dir) == "normal" ? "normal (tension for modified_burgers)" : "shear";
+    s.real(std::string(dir) + " maxwell stiffness", 0.5e6, 0, inf, "N/m",
+           "Burger's K_0 (K_m) of the " + what + " element, a contact property (Table 7.2: 0.5 MN/m).", true);
+    s.real(std::string(dir) + " maxwell viscosity", 0.5e6, 0, inf, "N s/m",
+           "Burger's C_inf (C_m) of the " + what + " element (Table 7.2: 0.5 MN s/m).", true);
+    s.real(std::string(dir) + " kelvin stiffness", 0.5e6, 0, inf, "N/m",
+           "Burger's K_1 (K_k) of the " + what + " element (Table 7.2: 0.5 MN/m).", true);
+    s.real(std::string(dir) + " kelvin viscosity", 0.5e6, 0, inf, "N s/m",
+           "Burger's C_1 (C_k) of the " + what + " element (Table 7.2: 0.5 MN s/m).", true);
+  }
+  s.real("compression stiffness", 0.5e6, 0, inf, "N/m",
+         "E_0^n of modified_burgers: elastic normal stiffness in compression (Table 7.2: 0.5 MN/m).", true);
   s.leave();
 }
 
-std::unique_ptr<dem::ContactModel> read_contact_law(const Deck &d)
+std::unique_ptr<dem::ContactModel> read_contact_law(const Deck &d, const RateScaling &rate)
 {
-  return dem::make_contact_model(d.text("contact law/law"), dem::LawParameters{});
+  dem::LawParameters p;
+  const auto element = [&](const std::string &dir) {
+    const std::string k = "contact law/" + dir;
+    return dem::BurgersConstants{d.real(k + " maxwell stiffness") * rate.stiffness_factor,
+                                 d.real(k + " maxwell viscosity") * rate.viscosity_factor,
+                                 d.real(k + " kelvin stiffness") * rate.stiffness_factor,
+                                 d.real(k + " kelvin viscosity") * rate.viscosity_factor};
+  };
+  p.burgers.normal = element("normal");
+  p.burgers.shear = element("shear");
+  p.burgers.compression_stiffness = d.real("contact law/compression stiffness") * rate.stiffness_factor;
+  return dem::make_contact_model(d.text("contact law/law"), p);
+}
+
+void declare_rate(DeckSchema &s)
+{
+  s.enter("rate");
+  s.real("temperature", 283, 0, inf, "K",
+         "Test temperature T of the temperature-compensated strain rate (thesis eq. 4.3; reference 283 K).", true);
+  s.real("physical strain rate", 0, 0, inf, "1/s",
+         "Strain rate of the test the run represents; 0: the run's own rate.  When it differs from the run "
+         "rate, both Burger's viscosities are multiplied by physical / run (viscosity scaling, thesis §7.3, "
+         "eq. 7.21) and rate-dependent properties use the physical rate.");
+  s.real("run strain rate", 0, 0, inf, "1/s",
+         "Strain rate actually simulated, for decks without a loading rate of their own (scenes); uniaxial "
+         "decks take it from their loading.");
+  s.choice("dependence", "none", {"none", "bonds", "bonds and stiffness"},
+           "What scales with (rate_T / 0.1 1/s)^0.29 at the physical rate (thesis eq. 7.23, n = 0.29, "
+           "k = 13.4e3 K, T_0 = 283 K): nothing, the bond strengths, or the bond strengths and every contact "
+           "stiffness (ball kn, ks and the Burger's springs).");
+  s.leave();
+}
+
+RateScaling read_rate(const Deck &d, double run_rate)
+{
+  RateScaling r;
+  r.temperature = d.real("rate/temperature");
+  r.run_rate = run_rate > 0 ? run_rate : d.real("rate/run strain rate");
+  r.physical_rate = d.real("rate/physical strain rate");
+  if (r.physical_rate > 0 && !(r.run_rate > 0))
+    d.fail("rate/run strain rate", "expected the simulated strain rate (> 0) when a physical strain rate is given");
+  if (r.physical_rate == 0)
+    r.physical_rate = r.run_rate;
+  if (r.physical_rate > 0)
+    r.viscosity_factor = dem::viscosity_scale(r.physical_rate, r.run_rate);
+  const std::string dependence = d.text("rate/dependence");
+  if (dependence != "none")
+  {
+    if (!(r.physical_rate > 0))
+      d.fail("rate/dependence", "expected a strain rate (rate/physical strain rate or the loading) for '" +
+                                  dependence + "'");
+    r.strength_factor = dem::RateLaw{}.strength_factor(r.physical_rate, r.temperature);
+    if (dependence == "bonds and stiffness")
+      r.stiffness_factor = r.strength_factor;
+  }
+  return r;
 }
 
 void declare_motion(DeckSchema &s, const std::string &default_gravity, double default_damping)
@@ -81,7 +153,18 @@ void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes)
   s.real("touch tolerance", 1e-6, 0, 1, "-",
          "Largest gap, relative to the smaller radius, at which a pair counts as touching.");
   s.integer("seed", 1, 0, std::numeric_limits<int>::max(), "Seed of the strength and removal draws.");
+  s.real("break displacement", 0, 0, inf, "m",
+         "Displacement criterion delta_c (thesis appendix A: 0.015e-3 m): a bond also breaks when the centre "
+         "distance has grown by more than this since the run started (bonds are formed then); 0: off.");
   s.leave();
+}
+
+void finish_bonds(const Deck &d, dem::ContactTable &table, const dem::ParticleStore &p, const RateScaling &rate)
+{
+  dem::scale_bond_strengths(table, rate.strength_factor);
+  const double delta_c = d.real("bonds/break displacement");
+  if (delta_c > 0)
+    dem::set_break_displacement(table, p, delta_c);
 }
 
 dem::BondSettings read_bond_settings(const Deck &d)
@@ -109,11 +192,11 @@ void declare_ball_properties(DeckSchema &s)
   s.leave();
 }
 
-void apply_ball_properties(const Deck &d, dem::BallSpec &b)
+void apply_ball_properties(const Deck &d, dem::BallSpec &b, const RateScaling &rate)
 {
   b.density = d.real("balls/density");
-  b.kn = d.real("balls/normal stiffness");
-  b.ks = d.real("balls/shear stiffness");
+  b.kn = d.real("balls/normal stiffness") * rate.stiffness_factor;
+  b.ks = d.real("balls/shear stiffness") * rate.stiffness_factor;
   b.friction = d.real("balls/friction");
 }
 

@@ -62,7 +62,7 @@ RunFiles::RunFiles(const RunOptions &options, const Deck &deck, int threads, lon
   if (options.out_dir.empty())
     return;
   dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed);
-  breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear",
+  breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
                                         std::vector<std::string>{"time_s", "first", "second", "mode"});
   if (paraview)
     paraview_ = std::make_unique<ParaviewWriter>(dir_->path("paraview"));

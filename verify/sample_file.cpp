@@ -140,6 +140,7 @@ void write_sample(const std::string &path, const SampleFile &sample)
                          {"removed_wall_friction_j", c.removed_wall_friction},
                          {"bonds_broken_tension", c.broken_tension},
                          {"bonds_broken_shear", c.broken_shear},
+                         {"bonds_broken_displacement", c.broken_displacement},
                          {"retired_friction_work_j", c.retired.friction_work},
                          {"retired_bond_energy_j", c.retired.bond_energy}}}};
   json walls = json::array();
@@ -293,6 +294,7 @@ SampleFile read_sample(const std::string &path)
     c.removed_wall_friction = clock.at("removed_wall_friction_j");
     c.broken_tension = clock.at("bonds_broken_tension");
     c.broken_shear = clock.at("bonds_broken_shear");
+    c.broken_displacement = clock.value("bonds_broken_displacement", std::size_t{0});
     c.retired.friction_work = clock.at("retired_friction_work_j");
     c.retired.bond_energy = clock.at("retired_bond_energy_j");
     return out;

@@ -57,6 +57,7 @@ void declare_scene(DeckSchema &s)
   declare_wall_properties(s, 1.2e7, 0, 0);
   s.leave();
   s.leave();
+  declare_rate(s);
   declare_motion(s, "0, 0, 0", 0.7);
   s.enter("run");
   s.real("duration", 1e-3, 0, inf, "s", "Simulated time.", true);
@@ -256,6 +257,7 @@ std::vector<std::string> series_columns(const dem::WallSet &walls)
                                 "bonds_intact",
                                 "bonds_broken_tension",
                                 "bonds_broken_shear",
+                                "bonds_broken_displacement",
                                 "coordination_number",
                                 "unbalanced_force_ratio"};
   for (dem::WallIndex w = 0; w < walls.size(); ++w)
@@ -272,11 +274,18 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
   dem::WallSet walls = read_walls(deck);
   check_walls_clear(deck, particles, walls);
 
+  const RateScaling rate = read_rate(deck, 0);
+  for (dem::Index b = 0; b < particles.size(); ++b)
+  {
+    particles.kn[b] *= rate.stiffness_factor;
+    particles.ks[b] *= rate.stiffness_factor;
+  }
   SceneResult result;
   result.sim = std::make_unique<dem::Simulation>(std::move(particles), std::move(walls),
-                                                 read_contact_law(deck), read_motion(deck));
+                                                 read_contact_law(deck, rate), read_motion(deck));
   dem::Simulation &sim = *result.sim;
   install_bonds(deck, sim, result.bonds);
+  finish_bonds(deck, sim.contacts(), sim.particles(), rate);
 
   const dem::Index n = sim.particles().size();
   std::vector<dem::Index> tracked;
@@ -366,6 +375,7 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
                                double(intact),
                                double(sim.bonds_broken(dem::BreakMode::tension)),
                                double(sim.bonds_broken(dem::BreakMode::shear)),
+                               double(sim.bonds_broken(dem::BreakMode::displacement)),
                                dem::coordination_number(sim.particles(), sim.contacts()),
                                dem::unbalanced_force_ratio(sim.particles(), sim.contacts())};
     for (dem::WallIndex w = 0; w < sim.walls().size(); ++w)
@@ -423,7 +433,8 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
                  {"removed", result.bonds.removed},
                  {"truncated_strength_draws", result.bonds.truncated_draws},
                  {"broken_tension", sim.bonds_broken(dem::BreakMode::tension)},
-                 {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)}}},
+                 {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)},
+                 {"broken_displacement", sim.bonds_broken(dem::BreakMode::displacement)}}},
       {"energy_j", {{"kinetic", e.kinetic},
                     {"strain", e.strain},
                     {"friction", e.friction},

@@ -9,6 +9,7 @@
 #include "protocol_uniaxial.h"
 #include "specimen.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cmath>
@@ -54,6 +55,7 @@ void declare_uniaxial(DeckSchema &s)
   s.choice("moving platens", "top", {"top", "both"},
            "'top': the top platen moves, the bottom one is fixed (thesis); 'both': each moves at half speed.");
   s.leave();
+  declare_rate(s);
   declare_motion(s, "0, 0, 0", 0.7);
   s.enter("measurement");
   s.real("gauge thickness", 0.8, 0, 1, "-",
@@ -78,6 +80,24 @@ void declare_uniaxial(DeckSchema &s)
 
 namespace
 {
+/// Largest value of a series column (0 for an empty series).
+double max_column(const Series &s, const std::string &name)
+{
+  const std::vector<double> v = s.column(name);
+  return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+}
+
+/// Largest ratio of two series columns over the rows where the second is positive.
+double max_ratio(const Series &s, const std::string &numerator, const std::string &denominator)
+{
+  const std::vector<double> a = s.column(numerator), b = s.column(denominator);
+  double out = 0;
+  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
+    if (b[k] > 0)
+      out = std::max(out, a[k] / b[k]);
+  return out;
+}
+
 std::string num_text(double v)
 {
   std::ostringstream o;
@@ -112,7 +132,7 @@ void write_gauge_study(const std::string &path, const Series &series, const std:
 
 const std::vector<std::string> series_columns = {
   "time_s", "axial_strain", "axial_stress_pa", "axial_stress_top_pa", "axial_stress_bottom_pa",
-  "radial_strain", "bonds_broken_fraction", "bonds_broken_tension", "bonds_broken_shear",
+  "radial_strain", "bonds_broken_fraction", "bonds_broken_tension", "bonds_broken_shear", "bonds_broken_displacement",
   "coordination_number", "coordination_number_spheres", "porosity_spheres", "unbalanced_force_ratio", "inertial_number", "time_step_s",
   "kinetic_energy_j", "strain_energy_j", "friction_dissipated_j", "damping_dissipated_j",
   "bond_energy_released_j", "boundary_work_j", "energy_residual_j"};
@@ -126,7 +146,15 @@ struct Setup
   std::unique_ptr<dem::Simulation> sim;
   dem::Specimen cell; ///< wall indices, diameter, height, description
   dem::BondReport bonds;
+  RateScaling rate;
 };
+
+/// The rate scaling of a test on a sample of the given height.
+RateScaling uniaxial_rate(const Deck &deck, double height)
+{
+  const bool by_speed = deck.text("loading/control") == "platen speed";
+  return read_rate(deck, by_speed ? deck.real("loading/platen speed") / height : deck.real("loading/strain rate"));
+}
 
 Setup lattice_setup(const Deck &deck)
 {
@@ -141,14 +169,21 @@ Setup lattice_setup(const Deck &deck)
     deck.fail("sample/diameter", "the sample holds fewer than two balls of the given radius: expected a "
                                  "diameter and height of several ball diameters");
   Setup s;
+  s.rate = uniaxial_rate(deck, specimen.height);
+  for (dem::Index b = 0; b < specimen.particles.size(); ++b)
+  {
+    specimen.particles.kn[b] *= s.rate.stiffness_factor;
+    specimen.particles.ks[b] *= s.rate.stiffness_factor;
+  }
   s.sim = std::make_unique<dem::Simulation>(std::move(specimen.particles), std::move(specimen.walls),
-                                            read_contact_law(deck), read_motion(deck));
+                                            read_contact_law(deck, s.rate), read_motion(deck));
   s.cell = std::move(specimen);
   s.sim->refresh_contacts();
   if (deck.text("bonds/install") == "touching")
     s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), read_bond_settings(deck));
   else if (deck.text("bonds/install") == "sample")
     deck.fail("bonds/install", "a lattice sample has no bonds of its own: expected touching or none");
+  finish_bonds(deck, s.sim->contacts(), s.sim->particles(), s.rate);
   return s;
 }
 
@@ -161,8 +196,10 @@ Setup sample_setup(const Deck &deck)
     deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
   SampleFile file = load_or_prepare_sample(deck.file("sample/file"), "runs/samples");
   dem::Snapshot &snap = file.snapshot;
+  Setup s;
+  s.rate = uniaxial_rate(deck, file.cell.height);
   dem::BallSpec ball;
-  apply_ball_properties(deck, ball);
+  apply_ball_properties(deck, ball, s.rate);
   dem::ParticleStore &p = snap.particles;
   for (dem::Index b = 0; b < p.size(); ++b)
   {
@@ -181,8 +218,7 @@ Setup sample_setup(const Deck &deck)
   snap.clock = dem::SimulationClock{};
   snap.clock.last_time_step = last_step;
 
-  Setup s;
-  s.sim = std::make_unique<dem::Simulation>(std::move(snap), read_contact_law(deck), read_motion(deck));
+  s.sim = std::make_unique<dem::Simulation>(std::move(snap), read_contact_law(deck, s.rate), read_motion(deck));
   if (file.cell.lateral >= 0 && s.sim->walls()[file.cell.lateral].enabled)
     s.sim->set_wall_enabled(file.cell.lateral, false);
   const std::string mode = deck.text("bonds/install");
@@ -196,6 +232,7 @@ Setup sample_setup(const Deck &deck)
   else
     for (const dem::Contact &c : s.sim->contacts().entries())
       s.bonds.bonded += c.bond.intact ? 1 : 0;
+  finish_bonds(deck, s.sim->contacts(), s.sim->particles(), s.rate);
   s.cell = std::move(file.cell);
   std::ostringstream d;
   d << "prepared sample " << deck.text("sample/file") << " of " << s.sim->particles().size() << " balls";
@@ -223,6 +260,7 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
   result.sim = std::move(setup.sim);
   dem::Simulation &sim = *result.sim;
   const dem::BondReport &bonds = setup.bonds;
+  const RateScaling setup_rate = setup.rate;
 
   dem::UniaxialSettings load;
   load.platen_speed = deck.text("loading/control") == "platen speed" ? deck.real("loading/platen speed") : 0;
@@ -292,6 +330,7 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
         const double stress = 0.5 * (s_top + s_bottom);
         const double broken_t = double(sim.bonds_broken(dem::BreakMode::tension));
         const double broken_s = double(sim.bonds_broken(dem::BreakMode::shear));
+        const double broken_d = double(sim.bonds_broken(dem::BreakMode::displacement));
         const double porosity = 0.5 * (dem::porosity(sim.particles(), sim.contacts(), spheres[0]) +
                                        dem::porosity(sim.particles(), sim.contacts(), spheres[1]));
         const double sphere_coordination =
@@ -301,7 +340,7 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
         // for uniaxial stress; quasi-static when I << 1e-3.
         const double inertial = stress > 0 ? strain_rate * 2 * mean_radius * std::sqrt(density / (stress / 3)) : 0.0;
         row = {sim.time(), strain, stress, s_top, s_bottom, gauges.radial_strain(sim.particles()),
-               (broken_t + broken_s) / installed, broken_t, broken_s,
+               (broken_t + broken_s + broken_d) / installed, broken_t, broken_s, broken_d,
                dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination, porosity,
                dem::unbalanced_force_ratio(sim.particles(), sim.contacts()), inertial, sim.time_step()};
         if (!study.empty())
@@ -370,6 +409,18 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
                  {"ramp_time_s", load.ramp_time},
                  {"final_strain", load.final_strain},
                  {"moving_platens", load.both_platens ? "both" : "top"}}},
+    {"rate", {{"temperature_k", setup_rate.temperature},
+              {"physical_strain_rate_per_s", setup_rate.physical_rate},
+              {"run_strain_rate_per_s", setup_rate.run_rate},
+              {"viscosity_factor", setup_rate.viscosity_factor},
+              {"bond_strength_factor", setup_rate.strength_factor},
+              {"stiffness_factor", setup_rate.stiffness_factor},
+              {"quasi_static_indicators",
+               {{"max_inertial_number", max_column(result.series, "inertial_number")},
+                {"max_unbalanced_force_ratio", max_column(result.series, "unbalanced_force_ratio")},
+                {"max_kinetic_to_strain_energy", max_ratio(result.series, "kinetic_energy_j", "strain_energy_j")},
+                {"note", "quasi-static when the inertial number stays well below 1e-3 and the kinetic energy is a "
+                         "small fraction of the stored energy"}}}}},
     {"peak_stress_pa", pk.value},
     {"strain_at_peak", pk.at},
     {"strain_at_max_breakage_rate", has_breaks ? nlohmann::json(break_strain) : nlohmann::json(nullptr)},
@@ -385,7 +436,8 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
                {"mean_normal_strength_n", bonds.mean_normal_strength},
                {"mean_shear_strength_n", bonds.mean_shear_strength},
                {"broken_tension", sim.bonds_broken(dem::BreakMode::tension)},
-               {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)}}},
+               {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)},
+               {"broken_displacement", sim.bonds_broken(dem::BreakMode::displacement)}}},
     {"coordination_number_at_end", dem::coordination_number(sim.particles(), sim.contacts())},
     {"steps", sim.steps()},
     {"last_time_step_s", sim.time_step()},
