@@ -98,6 +98,7 @@ public:
     std::vector<Contact> &contacts = table.entries();
     std::vector<ContactLoad> &loads = table.loads();
     history_.resize(contacts.size());
+    law_.prepare(dt);
     const auto n = static_cast<std::ptrdiff_t>(contacts.size());
     std::size_t breaks = 0;
 #pragma omp parallel for schedule(static) reduction(+ : breaks)

@@ -59,8 +59,9 @@ namespace dem
 /// The per-step coefficients of eq. 3.27 and 3.35 for a time step dt.
 struct BurgersCoefficients
 {
-  double a, b, c, d, kelvin_rate; ///< A, B, C, D and dt / (2 C_k)
+  double a = 1, b = 1, c = 1, d = 1, kelvin_rate = 0; ///< A, B, C, D and dt / (2 C_k)
 
+  BurgersCoefficients() = default;
   BurgersCoefficients(const BurgersConstants &k, double dt)
   {
     kelvin_rate = 0.5 * dt / k.kelvin_viscosity;
@@ -102,9 +103,21 @@ double burgers_energy(const BurgersConstants &k, const T &force, const T &kelvin
 /// Constants of a Burger's contact (Table 7.2 layout).
 struct BurgersContactConstants
 {
-  BurgersConstants normal; ///< tension (and compression for the plain law)
-  BurgersConstants shear;
-  double compression_stiffness = 0; ///< E_0^n, N/m (modified law only)
+  /// Thesis Table 7.2 unless set: 0.5 MN/m and 0.5 MN s/m everywhere.
+  BurgersConstants normal{0.5e6, 0.5e6, 0.5e6, 0.5e6}; ///< tension (and compression for the plain law)
+  BurgersConstants shear{0.5e6, 0.5e6, 0.5e6, 0.5e6};
+  double compression_stiffness = 0.5e6; ///< E_0^n, N/m (modified law only)
+
+  /// True when every constant is positive and finite.
+  bool valid() const
+  {
+    const auto ok = [](double v) { return v > 0 && std::isfinite(v); };
+    for (const BurgersConstants *k : {&normal, &shear})
+      if (!ok(k->maxwell_stiffness) || !ok(k->maxwell_viscosity) || !ok(k->kelvin_stiffness) ||
+          !ok(k->kelvin_viscosity))
+        return false;
+    return ok(compression_stiffness);
+  }
 };
 
 /// Per-contact state of a Burger's contact.
@@ -128,19 +141,28 @@ public:
   explicit BurgersLawT(const BurgersContactConstants &k) : k_(k) {}
   const BurgersContactConstants &constants() const { return k_; }
 
+  /// Computes the coefficients of eq. 3.27 and 3.35 once per step (the
+  /// contact pass calls this before its parallel loop).
+  void prepare(double dt)
+  {
+    if (dt == dt_)
+      return;
+    dt_ = dt;
+    normal_ = BurgersCoefficients(k_.normal, dt);
+    shear_ = BurgersCoefficients(k_.shear, dt);
+  }
+
   double normal_force(const ContactParams & /*p*/, double overlap, History &h, double dt) const
   {
     if (Modified && overlap >= 0)
       return k_.compression_stiffness * overlap;
-    const BurgersCoefficients co(k_.normal, dt);
-    return co.force(overlap - h.overlap, h.normal_kelvin, h.normal_force);
+    return normal_step(dt).force(overlap - h.overlap, h.normal_kelvin, h.normal_force);
   }
 
   Vec3 shear_force(const ContactParams & /*p*/, const Vec3 &rotated_force, const Vec3 &shear_increment,
                    History &h, double dt) const
   {
-    const BurgersCoefficients co(k_.shear, dt);
-    return co.force(Vec3(-shear_increment), h.shear_kelvin, rotated_force);
+    return shear_step(dt).force(Vec3(-shear_increment), h.shear_kelvin, rotated_force);
   }
 
   /// The Kelvin displacement turns with the contact plane like the shear force.
@@ -157,11 +179,11 @@ public:
       h.overlap = h.normal_force = h.normal_kelvin = 0;
     else
     {
-      h.normal_kelvin = BurgersCoefficients(k_.normal, dt).kelvin(h.normal_kelvin, h.normal_force, normal_force);
+      h.normal_kelvin = normal_step(dt).kelvin(h.normal_kelvin, h.normal_force, normal_force);
       h.normal_force = normal_force;
       h.overlap = overlap;
     }
-    h.shear_kelvin = BurgersCoefficients(k_.shear, dt).kelvin(h.shear_kelvin, shear_before, shear);
+    h.shear_kelvin = shear_step(dt).kelvin(h.shear_kelvin, shear_before, shear);
   }
 
   double stored_energy(const ContactParams & /*p*/, double normal_force, const Vec3 &shear_force,
@@ -182,7 +204,12 @@ public:
   double shear_stiffness(const ContactParams & /*p*/) const { return k_.shear.maxwell_stiffness; }
 
 private:
+  BurgersCoefficients normal_step(double dt) const { return dt == dt_ ? normal_ : BurgersCoefficients(k_.normal, dt); }
+  BurgersCoefficients shear_step(double dt) const { return dt == dt_ ? shear_ : BurgersCoefficients(k_.shear, dt); }
+
   BurgersContactConstants k_;
+  double dt_ = -1; ///< s, step of the cached coefficients
+  BurgersCoefficients normal_, shear_;
 };
 
 using BurgersLaw = BurgersLawT<false>;

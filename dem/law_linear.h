@@ -48,7 +48,8 @@ public:
     return rotated_force - p.ks * shear_increment;
   }
 
-  /// No history to turn with the contact plane or to advance.
+  /// Nothing to precompute per step, no history to turn or to advance.
+  void prepare(double /*dt*/) {}
   void rotate_history(History & /*h*/, const Vec3 & /*old_normal*/, const Vec3 & /*new_normal*/,
                       double /*twist*/) const
   {

@@ -4,6 +4,9 @@
 // select a law by this keyword and `demvv defaults` lists the rows.
 #include "contact_model.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace dem
 {
 namespace
@@ -17,6 +20,8 @@ std::unique_ptr<ContactModel> make(const LawParameters & /*p*/)
 template <class Law>
 std::unique_ptr<ContactModel> make_burgers(const LawParameters &p)
 {
+  if (!p.burgers.valid())
+    throw std::invalid_argument(std::string(Law::keyword) + ": every Burger's constant must be positive and finite");
   return std::make_unique<LawModel<Law>>(Law{p.burgers});
 }
 

@@ -387,9 +387,11 @@ void Preparation::expand_rattlers()
     for (Index b : short_balls)
       p.set_radius(b, p.radius[b] + step * base[b]);
     sim_->invalidate_neighbors();
+    // With servo walls the cell follows the packing: a frictionless packing
+    // held in a fixed cell at the servo stress can rearrange and unjam.
     equilibrate("expand " + std::to_string(short_balls.size()) + " balls with < " + std::to_string(s_.min_contacts) +
                   " contacts by 0.1 %",
-                false, 10 * s_.equilibrium_ratio);
+                s_.servo_stress > 0, 10 * s_.equilibrium_ratio);
     short_balls = short_of_contacts();
   }
   for (Index b = 0; b < p.size(); ++b)

@@ -1,6 +1,7 @@
 // Burger's contact laws and the rate laws (thesis §3.4.3, §7.2.2, eq. 4.3,
 // 7.23) at the level of the law: what VERIFICATION.md items 14-17 do not
 // already cover through `demvv verify` (test_verification.cpp).
+#include "contact_resolve.h"
 #include "law_burgers.h"
 #include "law_linear.h"
 #include "rate_scaling.h"
@@ -109,4 +110,33 @@ TEST_CASE("the Burger's element stores what its springs hold", "[burgers]")
   CHECK(uk == Approx(f / k.kelvin_stiffness).epsilon(1e-9));
   CHECK(dem::burgers_energy(k, f, uk) ==
         Approx(0.5 * f * f / k.maxwell_stiffness + 0.5 * f * f / k.kelvin_stiffness).epsilon(1e-9));
+}
+
+TEST_CASE("an unbonded Burger's contact slips at mu F_n and carries no tension (frictional contacts, §7.4)",
+          "[burgers]")
+{
+  // The bond and slip rules of contact_resolve.h are the same for every
+  // law: an unbonded contact (a removed bond, thesis §7.4) limits the shear
+  // force to mu F_n and drops tension.
+  const dem::BurgersLaw law(dem::BurgersContactConstants{});
+  dem::ContactParams params;
+  params.friction = 0.7;
+  params.ks = 1e6;
+  dem::ContactBond unbonded;
+  dem::ContactState state;
+  dem::BurgersHistory h;
+  dem::ContactGeometry g{dem::Vec3::UnitX(), 1e-6, dem::Vec3(0, 1e-2, 0), dem::Vec3::Zero(), dem::Vec3::Zero(),
+                         0.885e-3, 0.885e-3};
+  const double dt = 1e-6;
+  dem::ResolvedContact r{};
+  for (int s = 0; s < 200; ++s)
+    r = dem::resolve_contact(law, params, unbonded, state, h, g, dt);
+  REQUIRE(state.normal_force > 0);
+  CHECK(state.shear_force.norm() == Approx(params.friction * state.normal_force).epsilon(1e-12));
+  CHECK(state.friction_work > 0);
+  // Pulled apart while still overlapping less: never a tensile force.
+  g.overlap = 0.5e-6;
+  g.velocity_difference = dem::Vec3(1, 0, 0);
+  r = dem::resolve_contact(law, params, unbonded, state, h, g, dt);
+  CHECK(state.normal_force >= 0);
 }
