@@ -170,24 +170,7 @@ void Preparation::generate()
     b.radius = r0;
     cell_.particles.add(b);
   }
-  Wall bottom;
-  bottom.name = "bottom";
-  bottom.direction = Vec3::UnitZ();
-  bottom.props = frictionless;
-  Wall top = bottom;
-  top.name = "top";
-  top.point = Vec3(0, 0, size_.height);
-  top.direction = -Vec3::UnitZ();
-  Wall side;
-  side.name = "lateral";
-  side.shape = WallShape::cylinder;
-  side.radius = 0.5 * size_.diameter;
-  side.props = frictionless;
-  cell_.bottom = cell_.walls.add(bottom);
-  cell_.top = cell_.walls.add(top);
-  cell_.lateral = cell_.walls.add(side);
-  cell_.diameter = size_.diameter;
-  cell_.height = size_.height;
+  add_cell_walls(cell_, size_.diameter, size_.height, frictionless, frictionless, true);
 
   SimulationSettings settings;
   settings.local_damping = s_.local_damping;

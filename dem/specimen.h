@@ -26,6 +26,13 @@ struct Specimen
   double area() const { return pi * 0.25 * diameter * diameter; }
 };
 
+/// Adds the cell walls to a specimen: platens at z = 0 and z = height
+/// (facing each other) with `platen` properties and, if `with_lateral`, the
+/// cylinder of the given diameter with `lateral` properties; sets the
+/// specimen's wall indices, diameter and height.
+void add_cell_walls(Specimen &s, double diameter, double height, const WallProps &platen, const WallProps &lateral,
+                    bool with_lateral);
+
 /// A lattice cylinder of balls with the properties of `ball` (position and
 /// radius ignored), platens with `platen` properties, and a lateral wall with
 /// `lateral` properties if `with_lateral`.

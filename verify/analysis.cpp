@@ -31,6 +31,15 @@ LineFit fit_line(const std::vector<double> &x, const std::vector<double> &y, dou
   return f;
 }
 
+ElasticFit fit_elastic(const std::vector<double> &axial_strain, const std::vector<double> &axial_stress,
+                       const std::vector<double> &radial_strain, double lo, double hi)
+{
+  std::vector<double> minus_radial(radial_strain.size());
+  for (std::size_t k = 0; k < radial_strain.size(); ++k)
+    minus_radial[k] = -radial_strain[k];
+  return {fit_line(axial_strain, axial_stress, lo, hi), fit_line(axial_strain, minus_radial, lo, hi)};
+}
+
 Peak peak(const std::vector<double> &x, const std::vector<double> &y)
 {
   Peak p;

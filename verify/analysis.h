@@ -25,6 +25,15 @@ struct LineFit
 
 LineFit fit_line(const std::vector<double> &x, const std::vector<double> &y, double lo, double hi);
 
+/// The initial modulus (slope of axial stress against axial strain) and
+/// Poisson's ratio (slope of -radial against axial strain) over [lo, hi].
+struct ElasticFit
+{
+  LineFit modulus, poisson;
+};
+ElasticFit fit_elastic(const std::vector<double> &axial_strain, const std::vector<double> &axial_stress,
+                       const std::vector<double> &radial_strain, double lo, double hi);
+
 struct Peak
 {
   double value = 0;

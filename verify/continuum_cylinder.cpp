@@ -159,12 +159,8 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
   const auto sig = run.series.column("axial_stress_pa");
   const auto rad = run.series.column("radial_strain");
   const auto closed = run.series.column("axial_stress_closed_form_pa");
-  std::vector<double> minus_radial(rad.size());
-  for (std::size_t k = 0; k < rad.size(); ++k)
-    minus_radial[k] = -rad[k];
   const auto window = deck.real_list("measurement/fit window");
-  const LineFit modulus = fit_line(eps, sig, window[0], window[1]);
-  const LineFit poisson = fit_line(eps, minus_radial, window[0], window[1]);
+  const auto [modulus, poisson] = fit_elastic(eps, sig, rad, window[0], window[1]);
   const Peak pk = peak(eps, sig);
   double deviation = 0, scale = 0;
   for (std::size_t k = 0; k < sig.size(); ++k)

@@ -377,11 +377,7 @@ UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
   const auto sig = result.series.column("axial_stress_pa");
   const auto rad = result.series.column("radial_strain");
   const auto broken = result.series.column("bonds_broken_fraction");
-  std::vector<double> minus_radial(rad.size());
-  for (std::size_t k = 0; k < rad.size(); ++k)
-    minus_radial[k] = -rad[k];
-  const LineFit modulus = fit_line(eps, sig, window_lo, window_hi);
-  const LineFit poisson = fit_line(eps, minus_radial, window_lo, window_hi);
+  const auto [modulus, poisson] = fit_elastic(eps, sig, rad, window_lo, window_hi);
   const Peak pk = peak(eps, sig);
   double break_strain = 0, break_rate = 0;
   const bool has_breaks = x_at_max_rate(eps, broken, break_strain, break_rate) && break_rate > 0;
