@@ -213,10 +213,10 @@ void Preparation::grow()
 
 StageReport Preparation::equilibrate(const std::string &name, bool servo, double ratio)
 {
-  // With servo-controlled walls the packing never comes to rest (the walls
-  // keep moving), so a servo stage ends when the wall stresses have stayed
-  // within 1 % of the target for five checks in a row; the walls then stop
-  // and the packing settles like any other stage.
+  // A servo stage first brings the wall stresses within 1 % of the target
+  // for five checks in a row, then settles to the equilibrium ratio with the
+  // servo still on (near the target the walls hardly move): a frictionless
+  // packing held by fixed walls can creep, rearrange and unjam.
   ServoSettings servo_settings;
   servo_settings.target_stress = s_.servo_stress;
   long cycles = 0;
@@ -238,11 +238,12 @@ StageReport Preparation::equilibrate(const std::string &name, bool servo, double
     sim_->integrate();
     ++cycles;
   }
-  stop_walls(*sim_, cell_);
   const long servo_cycles = cycles;
   while (cycles < servo_cycles + s_.max_cycles)
   {
     sim_->compute_forces();
+    if (servo)
+      servo_cell(*sim_, cell_, servo_settings);
 
     if ((cycles - servo_cycles) % 100 == 0 && cycles > servo_cycles &&
         unbalanced_force_ratio(sim_->particles(), sim_->contacts()) < ratio)
@@ -253,6 +254,7 @@ StageReport Preparation::equilibrate(const std::string &name, bool servo, double
     sim_->integrate();
     ++cycles;
   }
+  stop_walls(*sim_, cell_);
   sim_->compute_forces();
   StageReport st = measure(name, cycles, converged);
   record(st);
