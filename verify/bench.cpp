@@ -1,7 +1,9 @@
 #include "bench.h"
 
 #include "deck.h"
+#include "prepare.h"
 #include "run.h"
+#include "sample_file.h"
 
 #include "bonds.h"
 #include "protocol_uniaxial.h"
@@ -32,25 +34,46 @@ int command_bench(const BenchOptions &o)
   ball.friction = 0.5;
   const dem::WallProps platen{1.2e7, 0, 0};
 
-  // The cylinder (H = D) whose ball count is closest to the request.
-  const double fill = lattice == dem::Lattice::simple_cubic ? dem::pi / 6 : dem::pi / (3 * std::sqrt(2.0));
-  double d = std::cbrt(o.particles * 4.0 / 3.0 * dem::pi * r * r * r / fill * 4 / dem::pi);
-  dem::Specimen best = dem::lattice_specimen(lattice, r, d, d, ball, platen, {}, false);
-  for (double scale = 0.9; scale <= 1.2; scale += 0.005)
-  {
-    dem::Specimen s = dem::lattice_specimen(lattice, r, d * scale, d * scale, ball, platen, {}, false);
-    if (std::abs(s.particles.size() - o.particles) < std::abs(best.particles.size() - o.particles))
-      best = std::move(s);
-  }
-  const double area = best.area();
-  const dem::WallIndex bottom = best.bottom, top = best.top;
   dem::SimulationSettings settings;
   settings.local_damping = 0.7;
   auto model = dem::make_contact_model(o.law, {});
   if (!model)
     throw DeckError("--law '" + o.law + "': not a registered contact law");
-  dem::Simulation sim(std::move(best.particles), std::move(best.walls), std::move(model), settings);
+  std::unique_ptr<dem::Simulation> sim_ptr;
+  dem::Specimen cell;
+  std::string source;
+  if (!o.sample.empty())
+  {
+    SampleFile file = load_or_prepare_sample(o.sample, "runs/samples");
+    apply_test_properties(file, ball, platen);
+    sim_ptr = std::make_unique<dem::Simulation>(std::move(file.snapshot), std::move(model), settings);
+    cell = std::move(file.cell);
+    if (cell.lateral >= 0)
+      sim_ptr->set_wall_enabled(cell.lateral, false);
+    source = "prepared sample";
+  }
+  else
+  {
+    // The cylinder (H = D) whose ball count is closest to the request.
+    const double fill = lattice == dem::Lattice::simple_cubic ? dem::pi / 6 : dem::pi / (3 * std::sqrt(2.0));
+    const double d = std::cbrt(o.particles * 4.0 / 3.0 * dem::pi * r * r * r / fill * 4 / dem::pi);
+    cell = dem::lattice_specimen(lattice, r, d, d, ball, platen, {}, false);
+    for (double scale = 0.9; scale <= 1.2; scale += 0.005)
+    {
+      dem::Specimen s = dem::lattice_specimen(lattice, r, d * scale, d * scale, ball, platen, {}, false);
+      if (std::abs(s.particles.size() - o.particles) < std::abs(cell.particles.size() - o.particles))
+        cell = std::move(s);
+    }
+    sim_ptr = std::make_unique<dem::Simulation>(std::move(cell.particles), std::move(cell.walls), std::move(model),
+                                                settings);
+    source = o.lattice + " lattice";
+  }
+  dem::Simulation &sim = *sim_ptr;
+  const double area = cell.area();
+  const dem::WallIndex bottom = cell.bottom, top = cell.top;
   sim.refresh_contacts();
+  for (dem::Contact &c : sim.contacts().entries())
+    c.bond = dem::ContactBond{};
   dem::BondSettings bonds;
   bonds.normal_strength = bonds.shear_strength = 1e12;
   dem::bond_touching_pairs(sim.contacts(), sim.particles(), bonds);
@@ -83,9 +106,9 @@ int command_bench(const BenchOptions &o)
     touching += c.state.touching ? 1 : 0;
   const double n = sim.particles().size();
   std::printf("demvv bench: particles %.0f, contacts %zu, steps %ld, wall %.3f s, particle-steps/s %.3e, "
-              "contact updates/s %.3e, threads %d (%s lattice, %s law, dt %.3g s, best of %d)\n",
+              "contact updates/s %.3e, threads %d (%s, %s law, dt %.3g s, best of %d)\n",
               n, touching, o.steps, seconds, n * o.steps / seconds, double(touching) * o.steps / seconds, threads,
-              o.lattice.c_str(), o.law.c_str(), sim.time_step(), o.repeat);
+              source.c_str(), o.law.c_str(), sim.time_step(), o.repeat);
   return 0;
 }
 } // namespace verify

@@ -21,6 +21,7 @@ struct BenchOptions
   int threads = 0;
   std::string lattice = "sc";
   std::string law = "linear";
+  std::string sample; ///< a sample file or prepare deck instead of the lattice
 };
 
 int command_bench(const BenchOptions &options);

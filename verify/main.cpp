@@ -53,6 +53,9 @@ int main(int argc, char **argv)
     ->check(CLI::Range(1, 100));
   bench_cmd->add_option("--lattice", bench.lattice, "Sample lattice: sc (coordination 6) or fcc (12)");
   bench_cmd->add_option("--law", bench.law, "Contact law keyword");
+  bench_cmd->add_option("--sample", bench.sample,
+                        "A prepared sample (sample.json or a prepare deck, prepared once and cached) instead of the "
+                        "lattice; --particles is then ignored");
 
   try
   {

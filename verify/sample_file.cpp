@@ -114,6 +114,27 @@ json report_json(const dem::PackingReport &r)
           {"wall_seconds", r.wall_seconds}};
 }
 
+void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const dem::WallProps &platen)
+{
+  dem::Snapshot &snap = sample.snapshot;
+  dem::ParticleStore &p = snap.particles;
+  for (dem::Index b = 0; b < p.size(); ++b)
+  {
+    p.density[b] = ball.density;
+    p.kn[b] = ball.kn;
+    p.ks[b] = ball.ks;
+    p.friction[b] = ball.friction;
+    p.set_radius(b, p.radius[b]); // mass and inertia from the new density
+  }
+  for (dem::Contact &c : snap.contacts)
+    c.params = dem::ContactTable::pair_params(p, c.first, c.second);
+  snap.walls[sample.cell.bottom].props = platen;
+  snap.walls[sample.cell.top].props = platen;
+  const double last_step = snap.clock.last_time_step;
+  snap.clock = dem::SimulationClock{};
+  snap.clock.last_time_step = last_step;
+}
+
 void write_sample(const std::string &path, const SampleFile &sample)
 {
   const dem::Snapshot &s = sample.snapshot;

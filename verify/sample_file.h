@@ -44,6 +44,12 @@ struct SampleFile
   std::string title;
 };
 
+/// Gives every ball of a loaded sample the properties of `ball` (density,
+/// kn, ks, friction; positions and radii kept), every contact the pair
+/// constants that follow, the platens `platen`, and restarts the clock at
+/// zero (keeping the last time step) for a new test.
+void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const dem::WallProps &platen);
+
 /// Writes a sample file atomically.
 void write_sample(const std::string &path, const SampleFile &sample);
 

@@ -196,23 +196,7 @@ Setup sample_setup(const Deck &deck)
   s.rate = uniaxial_rate(deck, file.cell.height);
   dem::BallSpec ball;
   apply_ball_properties(deck, ball, s.rate);
-  dem::ParticleStore &p = snap.particles;
-  for (dem::Index b = 0; b < p.size(); ++b)
-  {
-    p.density[b] = ball.density;
-    p.kn[b] = ball.kn;
-    p.ks[b] = ball.ks;
-    p.friction[b] = ball.friction;
-    p.set_radius(b, p.radius[b]); // mass and inertia from the deck's density
-  }
-  for (dem::Contact &c : snap.contacts)
-    c.params = dem::ContactTable::pair_params(p, c.first, c.second);
-  const dem::WallProps platen = read_wall_properties(deck, "platens");
-  snap.walls[file.cell.bottom].props = platen;
-  snap.walls[file.cell.top].props = platen;
-  const double last_step = snap.clock.last_time_step;
-  snap.clock = dem::SimulationClock{};
-  snap.clock.last_time_step = last_step;
+  apply_test_properties(file, ball, read_wall_properties(deck, "platens"));
 
   s.sim = std::make_unique<dem::Simulation>(std::move(snap), read_contact_law(deck, s.rate), read_motion(deck));
   if (file.cell.lateral >= 0 && s.sim->walls()[file.cell.lateral].enabled)
