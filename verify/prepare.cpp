@@ -181,7 +181,10 @@ SampleFile load_or_prepare_sample(const std::string &path, const std::string &ca
   const Deck deck = Deck::from_file(path);
   if (deck.kind() != "prepare")
     throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
-  const std::string dir = cache_dir + "/" + deck.name() + "-" + fnv1a_hex(deck.resolved()).substr(0, 12);
+  // Keyed by the resolved deck and the procedure's revision, so that a
+  // changed procedure never serves a stale sample.
+  const std::string key = deck.resolved() + "\npreparation revision " + std::to_string(dem::preparation_revision);
+  const std::string dir = cache_dir + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
   if (std::filesystem::exists(dir + "/sample.json"))
     return read_sample(dir + "/sample.json");
   PrepareResult r = run_prepare(deck, {dir, 0, true});
