@@ -132,7 +132,7 @@ dem::SimulationSettings read_motion(const Deck &d)
   return m;
 }
 
-void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes)
+void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool test)
 {
   s.enter("bonds");
   s.choice("install", modes.front(), modes,
@@ -153,9 +153,10 @@ void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes)
   s.real("touch tolerance", 1e-6, 0, 1, "-",
          "Largest gap, relative to the smaller radius, at which a pair counts as touching.");
   s.integer("seed", 1, 0, std::numeric_limits<int>::max(), "Seed of the strength and removal draws.");
-  s.real("break displacement", 0, 0, inf, "m",
-         "Displacement criterion delta_c (thesis appendix A: 0.015e-3 m): a bond also breaks when the centre "
-         "distance has grown by more than this since the run started (bonds are formed then); 0: off.");
+  if (test)
+    s.real("break displacement", 0, 0, inf, "m",
+           "Displacement criterion delta_c (thesis appendix A: 0.015e-3 m): a bond also breaks when the centre "
+           "distance has grown by more than this since the run started (bonds are formed then); 0: off.");
   s.leave();
 }
 

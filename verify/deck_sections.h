@@ -40,7 +40,9 @@ dem::SimulationSettings read_motion(const Deck &d);
 
 /// subsection "bonds": how bonds are installed and their strengths.
 /// `modes` lists the allowed values of "install" (first is the default).
-void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes);
+/// `test` adds the entries that only act during a test (the displacement
+/// criterion), not during preparation.
+void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool test = true);
 dem::BondSettings read_bond_settings(const Deck &d);
 /// After bonds are installed: rate-dependent strengths and the
 /// displacement criterion (appendix A) measured from the current distances.

@@ -102,7 +102,7 @@ void declare_prepare(DeckSchema &s)
          "Largest relative growth of a ball with too few contacts (thesis: typically less than 1 %).");
   s.real("local damping", 0.7, 0, 1, "-", "Local damping during preparation (must be < 1).");
   s.leave();
-  declare_bonds(s, {"touching", "none"});
+  declare_bonds(s, {"touching", "none"}, false);
   s.enter("output");
   s.flag("paraview", true, "Write a ParaView view of the prepared sample to paraview/.");
   s.leave();
