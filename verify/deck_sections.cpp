@@ -75,6 +75,25 @@ void declare_rate(DeckSchema &s)
   s.leave();
 }
 
+void RateScaling::scale_ball_stiffness(dem::ParticleStore &p) const
+{
+  for (dem::Index b = 0; b < p.size(); ++b)
+  {
+    p.kn[b] *= stiffness_factor;
+    p.ks[b] *= stiffness_factor;
+  }
+}
+
+nlohmann::json RateScaling::to_json() const
+{
+  return {{"temperature_k", temperature},
+          {"physical_strain_rate_per_s", physical_rate},
+          {"run_strain_rate_per_s", run_rate},
+          {"viscosity_factor", viscosity_factor},
+          {"bond_strength_factor", strength_factor},
+          {"stiffness_factor", stiffness_factor}};
+}
+
 RateScaling read_rate(const Deck &d, double run_rate)
 {
   RateScaling r;

@@ -10,6 +10,8 @@
 #include "contact_model.h"
 #include "simulation.h"
 
+#include <nlohmann/json.hpp>
+
 #include <memory>
 
 namespace verify
@@ -24,6 +26,11 @@ struct RateScaling
   double viscosity_factor = 1;  ///< on both viscosities, physical / run (eq. 7.21)
   double strength_factor = 1;   ///< on bond strengths (eq. 7.23 at the physical rate)
   double stiffness_factor = 1;  ///< on contact stiffnesses (eq. 7.23 at the physical rate)
+
+  /// Multiplies every ball's kn and ks by the stiffness factor.
+  void scale_ball_stiffness(dem::ParticleStore &p) const;
+  /// The "rate" block of summary.json.
+  nlohmann::json to_json() const;
 };
 void declare_rate(DeckSchema &s);
 /// The scaling for a run at `run_rate` [1/s] (0 if the run has no strain rate).

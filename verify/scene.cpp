@@ -275,11 +275,7 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
   check_walls_clear(deck, particles, walls);
 
   const RateScaling rate = read_rate(deck, 0);
-  for (dem::Index b = 0; b < particles.size(); ++b)
-  {
-    particles.kn[b] *= rate.stiffness_factor;
-    particles.ks[b] *= rate.stiffness_factor;
-  }
+  rate.scale_ball_stiffness(particles);
   SceneResult result;
   result.sim = std::make_unique<dem::Simulation>(std::move(particles), std::move(walls),
                                                  read_contact_law(deck, rate), read_motion(deck));
@@ -423,12 +419,7 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
       {"title", deck.text("title")},
       {"status", result.status.to_json()},
       {"contact_law", std::string(sim.model().name())},
-      {"rate", {{"temperature_k", rate.temperature},
-                {"physical_strain_rate_per_s", rate.physical_rate},
-                {"run_strain_rate_per_s", rate.run_rate},
-                {"viscosity_factor", rate.viscosity_factor},
-                {"bond_strength_factor", rate.strength_factor},
-                {"stiffness_factor", rate.stiffness_factor}}},
+      {"rate", rate.to_json()},
       {"particles", n},
       {"steps", sim.steps()},
       {"final_time_s", sim.time()},
