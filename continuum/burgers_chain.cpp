@@ -1,4 +1,4 @@
-#include "burgers_chain.h"
+#include "continuum/burgers_chain.h"
 
 #include <cmath>
 

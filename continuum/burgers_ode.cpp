@@ -1,6 +1,6 @@
-#include "burgers_ode.h"
+#include "continuum/burgers_ode.h"
 
-#include "numerical_failure.h"
+#include "continuum/numerical_failure.h"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>

@@ -31,7 +31,7 @@
 // that relative control decides everywhere except at zero crossings.
 #pragma once
 
-#include "burgers_chain.h"
+#include "continuum/burgers_chain.h"
 
 #include <functional>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "burgers_update.h"
+#include "continuum/burgers_update.h"
 
 namespace continuum
 {

@@ -27,7 +27,7 @@
 // sources [1/s].
 #pragma once
 
-#include "burgers_chain.h"
+#include "continuum/burgers_chain.h"
 
 #include <deal.II/base/symmetric_tensor.h>
 

@@ -1,6 +1,6 @@
-#include "cylinder.h"
+#include "continuum/cylinder.h"
 
-#include "viscoelastic_cylinder.h"
+#include "continuum/viscoelastic_cylinder.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>

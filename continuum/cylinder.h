@@ -17,7 +17,7 @@
 // the program has not done so) and every rank gets the same numbers.
 #pragma once
 
-#include "burgers_chain.h"
+#include "continuum/burgers_chain.h"
 
 #include <functional>
 #include <memory>

@@ -1,4 +1,4 @@
-#include "homogenisation.h"
+#include "continuum/homogenisation.h"
 
 namespace continuum
 {

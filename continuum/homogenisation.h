@@ -20,7 +20,7 @@
 // DEM run of the same sample (VERIFICATION 19) and nu by the measured one.
 #pragma once
 
-#include "burgers_chain.h"
+#include "continuum/burgers_chain.h"
 
 namespace continuum
 {

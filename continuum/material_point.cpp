@@ -1,6 +1,6 @@
-#include "material_point.h"
+#include "continuum/material_point.h"
 
-#include "burgers_update.h"
+#include "continuum/burgers_update.h"
 
 namespace continuum
 {

@@ -13,7 +13,7 @@
 // radial strain -(r - r0)/r0 (a bulging sample has negative radial strain).
 #pragma once
 
-#include "burgers_chain.h"
+#include "continuum/burgers_chain.h"
 
 #include <vector>
 

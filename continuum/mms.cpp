@@ -1,6 +1,6 @@
-#include "mms.h"
+#include "continuum/mms.h"
 
-#include "viscoelastic_cylinder.h"
+#include "continuum/viscoelastic_cylinder.h"
 
 #include <deal.II/base/convergence_table.h>
 #include <deal.II/base/function.h>

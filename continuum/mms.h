@@ -27,8 +27,8 @@
 //    the time update only.  Expected: stress and Kelvin strain ~ dt^2.
 #pragma once
 
-#include "burgers_chain.h"
-#include "cylinder.h"
+#include "continuum/burgers_chain.h"
+#include "continuum/cylinder.h"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "viscoelastic_cylinder.h"
+#include "continuum/viscoelastic_cylinder.h"
 
-#include "numerical_failure.h"
+#include "continuum/numerical_failure.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_tools.h>

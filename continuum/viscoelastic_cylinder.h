@@ -35,7 +35,7 @@
 // (cylinder.cpp), a manufactured solution for code verification (mms.cpp).
 #pragma once
 
-#include "burgers_update.h"
+#include "continuum/burgers_update.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>

@@ -1,4 +1,4 @@
-#include "bonds.h"
+#include "dem/bonds.h"
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>

@@ -13,8 +13,8 @@
 // table's pair order: the same sample and seed give the same bonds.
 #pragma once
 
-#include "contacts.h"
-#include "particles.h"
+#include "dem/contacts.h"
+#include "dem/particles.h"
 
 #include <cstdint>
 

@@ -13,7 +13,7 @@
 // (thesis eq. 3.1-3.2).  The first entity receives -F.
 #pragma once
 
-#include "types.h"
+#include "dem/types.h"
 
 #include <cmath>
 #include <limits>

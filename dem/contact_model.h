@@ -11,11 +11,11 @@
 // describe the bitumen between grains.
 #pragma once
 
-#include "contact_resolve.h"
-#include "contacts.h"
-#include "law_burgers.h"
-#include "law_linear.h"
-#include "stability.h"
+#include "dem/contact_resolve.h"
+#include "dem/contacts.h"
+#include "dem/law_burgers.h"
+#include "dem/law_linear.h"
+#include "dem/stability.h"
 
 #include <memory>
 #include <string_view>

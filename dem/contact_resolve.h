@@ -28,7 +28,7 @@
 // releases the stored energy the forces lose at that step.
 #pragma once
 
-#include "contact.h"
+#include "dem/contact.h"
 
 namespace dem
 {

@@ -1,4 +1,4 @@
-#include "contacts.h"
+#include "dem/contacts.h"
 
 #include <algorithm>
 

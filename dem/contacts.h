@@ -16,8 +16,8 @@
 // them in a fixed order, so no two threads ever write the same particle.
 #pragma once
 
-#include "contact.h"
-#include "neighbors.h"
+#include "dem/contact.h"
+#include "dem/neighbors.h"
 
 #include <vector>
 

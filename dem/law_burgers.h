@@ -47,8 +47,8 @@
 // hands out its constants per direction so tests compare against them.
 #pragma once
 
-#include "burgers_closed_form.h"
-#include "contact.h"
+#include "dem/burgers_closed_form.h"
+#include "dem/contact.h"
 
 #include <algorithm>
 #include <string_view>

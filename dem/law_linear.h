@@ -17,7 +17,7 @@
 // where m* = m_1 m_2 / (m_1 + m_2) (m* = m against a wall).
 #pragma once
 
-#include "contact.h"
+#include "dem/contact.h"
 
 #include <string_view>
 

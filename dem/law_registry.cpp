@@ -2,7 +2,7 @@
 // History, normal_force, shear_force, stored_energy and stiffness functions
 // and its closed forms, then add one row below.  Nothing else changes: decks
 // select a law by this keyword and `demvv defaults` lists the rows.
-#include "contact_model.h"
+#include "dem/contact_model.h"
 
 #include <stdexcept>
 #include <string>

@@ -1,4 +1,4 @@
-#include "measure.h"
+#include "dem/measure.h"
 
 #include <algorithm>
 #include <cmath>

@@ -24,7 +24,7 @@
 // sample has negative radial strain and Poisson's ratio is -eps_r / eps_a.
 #pragma once
 
-#include "simulation.h"
+#include "dem/simulation.h"
 
 #include <vector>
 

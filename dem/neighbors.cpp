@@ -1,4 +1,4 @@
-#include "neighbors.h"
+#include "dem/neighbors.h"
 
 #include <algorithm>
 #include <array>

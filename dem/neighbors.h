@@ -10,7 +10,7 @@
 // brute_force_pairs() is the O(N^2) oracle the tests compare against.
 #pragma once
 
-#include "particles.h"
+#include "dem/particles.h"
 
 #include <utility>
 #include <vector>

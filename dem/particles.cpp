@@ -1,4 +1,4 @@
-#include "particles.h"
+#include "dem/particles.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 // is how a scene fixes a ball or drives it at constant velocity.
 #pragma once
 
-#include "types.h"
+#include "dem/types.h"
 
 #include <vector>
 

@@ -1,8 +1,8 @@
-#include "prep_packing.h"
+#include "dem/prep_packing.h"
 
-#include "measure.h"
-#include "neighbors.h"
-#include "servo.h"
+#include "dem/measure.h"
+#include "dem/neighbors.h"
+#include "dem/servo.h"
 
 #include <Eigen/Eigenvalues>
 #include <gsl/gsl_rng.h>

@@ -30,9 +30,9 @@
 // cell volume).
 #pragma once
 
-#include "bonds.h"
-#include "simulation.h"
-#include "specimen.h"
+#include "dem/bonds.h"
+#include "dem/simulation.h"
+#include "dem/specimen.h"
 
 #include <cstdint>
 #include <functional>

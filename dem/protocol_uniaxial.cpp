@@ -1,4 +1,4 @@
-#include "protocol_uniaxial.h"
+#include "dem/protocol_uniaxial.h"
 
 #include <algorithm>
 

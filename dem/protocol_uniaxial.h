@@ -10,7 +10,7 @@
 // initial cross-section area (compression positive).
 #pragma once
 
-#include "simulation.h"
+#include "dem/simulation.h"
 
 namespace dem
 {

@@ -1,4 +1,4 @@
-#include "sample_lattice.h"
+#include "dem/sample_lattice.h"
 
 #include <algorithm>
 #include <cmath>

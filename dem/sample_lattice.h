@@ -8,7 +8,7 @@
 // thesis chapter 5, and every run on one says so.
 #pragma once
 
-#include "types.h"
+#include "dem/types.h"
 
 #include <string_view>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "servo.h"
+#include "dem/servo.h"
 
-#include "simulation.h"
+#include "dem/simulation.h"
 
 #include <algorithm>
 #include <array>

@@ -16,7 +16,7 @@
 // the cylinder back means expanding it.
 #pragma once
 
-#include "specimen.h"
+#include "dem/specimen.h"
 
 namespace dem
 {

@@ -1,4 +1,4 @@
-#include "simulation.h"
+#include "dem/simulation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -24,9 +24,9 @@
 // logical or) or serial, so results are identical for any thread count.
 #pragma once
 
-#include "contact_model.h"
-#include "energy.h"
-#include "walls.h"
+#include "dem/contact_model.h"
+#include "dem/energy.h"
+#include "dem/walls.h"
 
 #include <memory>
 #include <stdexcept>

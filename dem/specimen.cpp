@@ -1,4 +1,4 @@
-#include "specimen.h"
+#include "dem/specimen.h"
 
 #include <sstream>
 

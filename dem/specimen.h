@@ -6,9 +6,9 @@
 // made (a lattice here; a prepared random packing with issue 3).
 #pragma once
 
-#include "particles.h"
-#include "sample_lattice.h"
-#include "walls.h"
+#include "dem/particles.h"
+#include "dem/sample_lattice.h"
+#include "dem/walls.h"
 
 #include <string>
 

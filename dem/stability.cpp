@@ -1,6 +1,6 @@
-#include "stability.h"
+#include "dem/stability.h"
 
-#include "simulation.h"
+#include "dem/simulation.h"
 
 #include <Eigen/Dense>
 

@@ -30,7 +30,7 @@
 // engine uses a safety fraction (default 0.8) of it.
 #pragma once
 
-#include "types.h"
+#include "dem/types.h"
 
 #include <algorithm>
 #include <cmath>

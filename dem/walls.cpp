@@ -1,4 +1,4 @@
-#include "walls.h"
+#include "dem/walls.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 // before a uniaxial test, §5.3.4) without renumbering the others.
 #pragma once
 
-#include "contact.h"
+#include "dem/contact.h"
 
 #include <string>
 #include <vector>

@@ -1,10 +1,10 @@
 // Burger's contact laws and the rate laws (thesis §3.4.3, §7.2.2, eq. 4.3,
 // 7.23) at the level of the law: what VERIFICATION.md items 14-17 do not
 // already cover through `demvv verify` (test_verification.cpp).
-#include "contact_resolve.h"
-#include "law_burgers.h"
-#include "law_linear.h"
-#include "rate_scaling.h"
+#include "dem/contact_resolve.h"
+#include "dem/law_burgers.h"
+#include "dem/law_linear.h"
+#include "dem/rate_scaling.h"
 
 #include <catch2/catch.hpp>
 

@@ -4,19 +4,19 @@
 // axisymmetric against 3D, manufactured-solution orders, homogenisation
 // against hand-computed values, the GCI arithmetic, bad decks, and the same
 // answer on two MPI ranks as on one.
-#include "commands.h"
-#include "continuum_cylinder.h"
-#include "continuum_gci.h"
-#include "continuum_ode.h"
-#include "deck.h"
+#include "verify/cli/commands.h"
+#include "verify/kinds/continuum_cylinder.h"
+#include "verify/kinds/continuum_gci.h"
+#include "verify/kinds/continuum_ode.h"
+#include "verify/decks/deck.h"
 
-#include "burgers_closed_form.h"
-#include "burgers_ode.h"
-#include "cylinder.h"
-#include "homogenisation.h"
-#include "material_point.h"
-#include "mms.h"
-#include "numerical_failure.h"
+#include "dem/burgers_closed_form.h"
+#include "continuum/burgers_ode.h"
+#include "continuum/cylinder.h"
+#include "continuum/homogenisation.h"
+#include "continuum/material_point.h"
+#include "continuum/mms.h"
+#include "continuum/numerical_failure.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
 // Bad input is refused with one line naming the file, the key, the value and
 // what was expected; good input of either syntax (.prm, JSON) is accepted.
-#include "commands.h"
-#include "deck.h"
-#include "scene.h"
+#include "verify/cli/commands.h"
+#include "verify/decks/deck.h"
+#include "verify/kinds/scene.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,12 +1,12 @@
 // Unit tests of engine pieces, each against an exact value.
 #include "support/two_body.h"
 
-#include "analysis.h"
-#include "bonds.h"
-#include "measure.h"
-#include "neighbors.h"
-#include "sample_lattice.h"
-#include "stability.h"
+#include "verify/run/analysis.h"
+#include "dem/bonds.h"
+#include "dem/measure.h"
+#include "dem/neighbors.h"
+#include "dem/sample_lattice.h"
+#include "dem/stability.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,16 +1,16 @@
 // Sample preparation (thesis ch. 5): a small sample meets its own targets,
 // a saved sample continues exactly, the servo reaches its stress, and
 // impossible requests are refused.
-#include "checks_support.h"
-#include "deck.h"
-#include "prepare.h"
-#include "sample_file.h"
-#include "uniaxial.h"
+#include "verify/checks/checks_support.h"
+#include "verify/decks/deck.h"
+#include "verify/kinds/prepare.h"
+#include "verify/io/sample_file.h"
+#include "verify/kinds/uniaxial.h"
 
-#include "measure.h"
-#include "prep_packing.h"
-#include "servo.h"
-#include "specimen.h"
+#include "dem/measure.h"
+#include "dem/prep_packing.h"
+#include "dem/servo.h"
+#include "dem/specimen.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,9 +1,9 @@
 // Whole runs: determinism, thread-count independence, sign conventions, and
 // outputs that stay valid when a run stops on a numerical fault.
-#include "deck.h"
-#include "output.h"
-#include "scene.h"
-#include "uniaxial.h"
+#include "verify/decks/deck.h"
+#include "verify/io/output.h"
+#include "verify/kinds/scene.h"
+#include "verify/kinds/uniaxial.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

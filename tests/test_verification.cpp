@@ -1,7 +1,7 @@
 // Every check of the verification registry, as a test: the same code that
 // writes the report decides the test, so the two can never disagree.  Each
 // metric is asserted with its value, tolerance and reason in the message.
-#include "check.h"
+#include "verify/checks/check.h"
 
 #include <catch2/catch.hpp>
 

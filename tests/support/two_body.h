@@ -2,7 +2,7 @@
 // builders the verification checks use (verify/checks_support.h).
 #pragma once
 
-#include "checks_support.h"
+#include "verify/checks/checks_support.h"
 
 namespace demtest
 {

@@ -1,0 +1,20 @@
+# ctest `layering`: dem/ includes no continuum/ or verify/ header, and
+# continuum/ no dem/ or verify/ header (the include root is the repository,
+# so the compiler alone would not stop it).  Run with -DSRC=<source dir>.
+set(_bad "")
+foreach(_rule "dem;continuum|verify" "continuum;dem|verify")
+  list(GET _rule 0 _layer)
+  list(GET _rule 1 _forbidden)
+  file(GLOB_RECURSE _files "${SRC}/${_layer}/*.h" "${SRC}/${_layer}/*.cpp")
+  foreach(_f ${_files})
+    file(STRINGS "${_f}" _lines REGEX "^#include \"(${_forbidden})/")
+    if(_lines)
+      list(APPEND _bad "${_f}: ${_lines}")
+    endif()
+  endforeach()
+endforeach()
+if(_bad)
+  string(REPLACE ";" "\n" _msg "${_bad}")
+  message(FATAL_ERROR "layering broken:\n${_msg}")
+endif()
+message(STATUS "layering holds: dem/ and continuum/ include neither each other nor verify/")

@@ -1,0 +1,88 @@
+#include "verify/checks/check.h"
+
+#include "build_info.h"
+
+#include <cmath>
+
+namespace verify
+{
+std::string_view category_name(Category c)
+{
+  switch (c)
+  {
+  case Category::code_verification:
+    return "code verification";
+  case Category::solution_verification:
+    return "solution verification";
+  case Category::calibration:
+    return "calibration";
+  case Category::validation:
+    return "validation";
+  }
+  return "?";
+}
+
+Metric relative_error(std::string name, double measured, double expected, double tolerance, std::string reason)
+{
+  Metric m{std::move(name), 0, tolerance, false, std::move(reason), false};
+  if (!std::isfinite(measured) || !std::isfinite(expected) || expected == 0)
+  {
+    m.value = std::nan("");
+    m.reason += " [FAILED: missing, zero or non-finite reference or value]";
+    return m;
+  }
+  m.value = std::abs(measured - expected) / std::abs(expected);
+  m.pass = m.value <= tolerance;
+  return m;
+}
+
+Metric absolute_error(std::string name, double measured, double expected, double tolerance, std::string reason)
+{
+  Metric m{std::move(name), std::abs(measured - expected), tolerance, false, std::move(reason), false};
+  m.pass = std::isfinite(m.value) && m.value <= tolerance;
+  return m;
+}
+
+Metric bound(std::string name, double value, double limit, bool at_least, std::string reason)
+{
+  Metric m{std::move(name), value, limit, at_least, std::move(reason), false};
+  m.pass = std::isfinite(value) && (at_least ? value >= limit : value <= limit);
+  return m;
+}
+
+void ConvergenceTable::add(double h, double error)
+{
+  ConvergenceRow r{h, error, 0};
+  if (!rows.empty() && rows.back().error > 0 && error > 0 && rows.back().h != h)
+    r.order = std::log(rows.back().error / error) / std::log(rows.back().h / h);
+  rows.push_back(r);
+}
+
+double ConvergenceTable::last_order() const
+{
+  return rows.size() < 2 ? 0.0 : rows.back().order;
+}
+
+bool CheckOutcome::pass() const
+{
+  if (metrics.empty())
+    return false;
+  for (const Metric &m : metrics)
+    if (!m.pass)
+      return false;
+  return true;
+}
+
+const Check *find_check(std::string_view id)
+{
+  for (const Check &c : check_registry())
+    if (c.id == id)
+      return &c;
+  return nullptr;
+}
+
+std::string default_cases_dir()
+{
+  return std::string(build_info::source_dir) + "/cases";
+}
+} // namespace verify

@@ -1,0 +1,12 @@
+// Burger's contact checks (VERIFICATION.md items 14-17).
+#pragma once
+
+#include "verify/checks/check.h"
+
+namespace verify
+{
+CheckOutcome check_burgers_update(const CheckContext &ctx);
+CheckOutcome check_burgers_pull(const CheckContext &ctx);
+CheckOutcome check_viscosity_scaling(const CheckContext &ctx);
+CheckOutcome check_displacement_criterion(const CheckContext &ctx);
+} // namespace verify

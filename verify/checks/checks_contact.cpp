@@ -1,0 +1,259 @@
+// Contact-level code verification (VERIFICATION.md items 1, 2, 3, 5): each
+// check runs a case deck from cases/ exactly as `demvv run` would and
+// compares its series with the closed form of the law (law_linear.h).
+#include "verify/checks/checks_contact.h"
+
+#include "verify/checks/checks_support.h"
+
+#include "verify/run/analysis.h"
+#include "dem/law_linear.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace verify
+{
+namespace
+{
+double first_row_value(const Series &s, const std::string &column) { return s.column(column).front(); }
+
+/// Duration, peak force and restitution of one impact (item 1).
+void impact_metrics(CheckOutcome &out, const std::string &label, const std::vector<double> &t,
+                    const std::vector<double> &force, double dt, double kn, double reduced_mass, double v_in,
+                    double v_out)
+{
+  double first = std::nan(""), last = std::nan(""), peak_force = 0;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (force[k] > 0)
+    {
+      if (std::isnan(first))
+        first = t[k];
+      last = t[k];
+      peak_force = std::max(peak_force, force[k]);
+    }
+  const double omega_dt = dem::LinearLaw::natural_frequency(kn, reduced_mass) * dt;
+  const double tc = dem::LinearLaw::collision_time(kn, reduced_mass);
+  // Onset and end each fall inside one step: the force is positive on the
+  // steps in (t_on, t_off), so (last - first + dt) is within one step of t_c.
+  out.metrics.push_back(relative_error(label + ": contact duration, relative error", last - first + dt, tc,
+                                       dt / tc, "class C: onset and end each resolved to one step (dt / t_c)"));
+  // The centred-difference solution of a linear spring has amplitude and
+  // phase errors O((omega dt)^2) (both below (omega dt)^2 / 2), and
+  // sampling the sine at steps misses its top by at most (omega dt)^2 / 8.
+  out.metrics.push_back(relative_error(label + ": peak normal force, relative error", peak_force,
+                                       dem::LinearLaw::peak_force(kn, reduced_mass, v_in), omega_dt * omega_dt,
+                                       "class B: (omega dt)^2 bounds the amplitude and sampling errors"));
+  // Energy is conserved up to the spring energy left when the force
+  // switches off inside a step: at most 1/2 K (v dt)^2 against 1/2 m* v^2.
+  out.metrics.push_back(relative_error(label + ": coefficient of restitution, relative error", v_out / v_in,
+                                       dem::LinearLaw::restitution(), omega_dt * omega_dt,
+                                       "class B: spring energy at the switch-off step, (omega dt)^2"));
+}
+} // namespace
+
+CheckOutcome check_linear_impact(const CheckContext &ctx)
+{
+  CheckOutcome out;
+  {
+    const SceneResult r = run_case(ctx, "v01_linear_impact");
+    const dem::ParticleStore &p = r.sim->particles();
+    const double kn = dem::ContactTable::pair_params(p, 0, 1).kn;
+    const double m_red = dem::LinearLaw::reduced_mass(p.mass[0], p.mass[1]);
+    const Series b0 = r.particles.where("particle", 0), b1 = r.particles.where("particle", 1);
+    const double v_in = first_row_value(b0, "vx_mps") - first_row_value(b1, "vx_mps");
+    const double v_out = b1.column("vx_mps").back() - b0.column("vx_mps").back();
+    const double dt = r.series.column("time_step_s").back();
+    impact_metrics(out, "ball-ball", r.contacts.column("time_s"), r.contacts.column("normal_force_n"), dt, kn,
+                   m_red, v_in, v_out);
+  }
+  {
+    const SceneResult r = run_case(ctx, "v01_linear_impact_wall");
+    const dem::ParticleStore &p = r.sim->particles();
+    const double kn = dem::in_series(p.kn[0], r.sim->walls()[0].props.kn);
+    const std::vector<double> vz = r.particles.column("vz_mps");
+    std::vector<double> force = r.series.column("plane1_force_z_n");
+    for (double &f : force)
+      f = -f; // the wall pushes the ball up: compression on the ball
+    const double dt = r.series.column("time_step_s").back();
+    impact_metrics(out, "ball-wall", r.series.column("time_s"), force, dt, kn, p.mass[0], -vz.front(), vz.back());
+  }
+  return out;
+}
+
+CheckOutcome check_bond_failure(const CheckContext &ctx)
+{
+  CheckOutcome out;
+  // --- tension ---------------------------------------------------------
+  {
+    const Deck deck = load_case(ctx, "v02_bond_tension");
+    const SceneResult r = completed(deck.name(), run_scene(deck, {}));
+    const double K = dem::ContactTable::pair_params(r.sim->particles(), 0, 1).kn;
+    const double phi = deck.real("bonds/normal strength");
+    const double v = 1e-3; // m/s, the prescribed separation speed of the case
+    const auto t = r.contacts.column("time_s"), fn = r.contacts.column("normal_force_n");
+    const auto bonded = r.contacts.column("bonded");
+    const double dt = r.series.column("time_step_s").back();
+    double law_error = 0, after = 0, u_break = std::nan("");
+    for (std::size_t k = 0; k < t.size(); ++k)
+    {
+      const double u = v * t[k]; // imposed extension, independent of the engine's geometry
+      if (bonded[k] == 1)
+        law_error = std::max(law_error, std::abs(fn[k] + K * u) / phi);
+      else
+      {
+        if (std::isnan(u_break))
+          u_break = u;
+        after = std::max(after, std::abs(fn[k]));
+      }
+    }
+    // Positions carry round-off of ~1e-16 x 2R; K times that is ~1e-12 N.
+    out.metrics.push_back(bound("tension: max |F_n + K_n u| / phi_n before the break", law_error, 1e-9, false,
+                                "class A: secant law, round-off in positions only"));
+    out.metrics.push_back(relative_error("tension: extension at break vs phi_n / K_n", u_break, phi / K,
+                                         v * dt / (phi / K), "class C: the break is detected at a step (v dt)"));
+    out.metrics.push_back(bound("tension: largest |F_n| after the break [N]", after, 0.0, false,
+                                "rule of thesis §3.4.2: both forces are set to zero"));
+  }
+  // --- shear under a compressive preload ---------------------------------
+  {
+    const Deck deck = load_case(ctx, "v02_bond_shear");
+    const SceneResult r = completed(deck.name(), run_scene(deck, {}));
+    const auto params = dem::ContactTable::pair_params(r.sim->particles(), 0, 1);
+    const double phi = deck.real("bonds/shear strength");
+    const double v = 1e-3;
+    const double d = 2 * r.sim->particles().radius[0];
+    const auto t = r.contacts.column("time_s"), fs = r.contacts.column("shear_force_n");
+    const auto fn = r.contacts.column("normal_force_n"), bonded = r.contacts.column("bonded");
+    const double dt = r.series.column("time_step_s").back();
+    double law_error = 0, slip_error = 0, u_break = std::nan("");
+    for (std::size_t k = 0; k < t.size(); ++k)
+    {
+      const double u = v * t[k];
+      if (bonded[k] == 1)
+        law_error = std::max(law_error, std::abs(fs[k] - params.ks * u) / phi);
+      else
+      {
+        if (std::isnan(u_break))
+          u_break = u;
+        slip_error = std::max(slip_error, std::abs(fs[k] - params.friction * fn[k]) / (params.friction * fn[k]));
+      }
+    }
+    // The driven ball moves on a straight line, so the contact normal turns
+    // by u/d and the shear force lags the straight-line displacement by a
+    // relative (u/d)^2 / 2 (< 1e-6 here); 1e-5 allows for it.
+    const double turn = (phi / params.ks) / d;
+    out.metrics.push_back(bound("shear: max |F_s - K_s u_s| / phi_s before the break", law_error,
+                                std::max(1e-5, turn * turn), false,
+                                "class A up to the geometric turn of the normal, (u/d)^2 / 2"));
+    out.metrics.push_back(relative_error("shear: displacement at break vs phi_s / K_s", u_break, phi / params.ks,
+                                         v * dt / (phi / params.ks), "class C: the break is detected at a step (v dt)"));
+    out.metrics.push_back(bound("shear: max | |F_s| / (mu F_n) - 1 | after the break", slip_error, 1e-12, false,
+                                "class A: slip rescales the shear force to mu F_n exactly"));
+  }
+  // --- compression ----------------------------------------------------------
+  {
+    const Deck deck = load_case(ctx, "v02_bond_compression");
+    const SceneResult r = completed(deck.name(), run_scene(deck, {}));
+    const double phi = deck.real("bonds/normal strength");
+    const double broken = r.sim->bonds_broken(dem::BreakMode::tension) + r.sim->bonds_broken(dem::BreakMode::shear);
+    out.metrics.push_back(bound("compression: largest compressive force / phi_n",
+                                max_abs(r.contacts.column("normal_force_n")) / phi, 10, true,
+                                "the pair is pushed well beyond the tensile strength"));
+    out.metrics.push_back(bound("compression: bonds broken", broken, 0, false,
+                                "thesis §3.4.2: only tension can break a bond in the normal direction"));
+  }
+  return out;
+}
+
+CheckOutcome check_coulomb_slip(const CheckContext &ctx)
+{
+  CheckOutcome out;
+  {
+    const SceneResult r = run_case(ctx, "v03_slip");
+    const auto params = dem::ContactTable::pair_params(r.sim->particles(), 0, 1);
+    const double v = 1e-3;
+    const double d = 2 * r.sim->particles().radius[0];
+    const auto t = r.contacts.column("time_s"), fs = r.contacts.column("shear_force_n");
+    const auto fn = r.contacts.column("normal_force_n");
+    const double dt = r.series.column("time_step_s").back();
+    double stick_error = 0, slip_error = 0, onset = std::nan(""), onset_expected = std::nan("");
+    for (std::size_t k = 0; k < t.size(); ++k)
+    {
+      const double limit = params.friction * fn[k];
+      if (fs[k] < limit * (1 - 1e-12))
+        stick_error = std::max(stick_error, std::abs(fs[k] - params.ks * v * t[k]) / limit);
+      else
+      {
+        if (std::isnan(onset))
+        {
+          // The ball slides on a straight line, so F_n falls slightly as it
+          // goes: the onset is where K_s u_s reaches mu F_n at that moment.
+          onset = v * t[k];
+          onset_expected = limit / params.ks;
+        }
+        slip_error = std::max(slip_error, std::abs(fs[k] / limit - 1));
+      }
+    }
+    const double turn = onset_expected / d;
+    out.metrics.push_back(bound("slip: max |F_s - K_s u_s| / (mu F_n) while sticking", stick_error,
+                                std::max(1e-5, turn * turn), false,
+                                "class A up to the geometric turn of the normal, (u/d)^2 / 2"));
+    out.metrics.push_back(relative_error("slip: displacement at slip onset vs mu F_n / K_s", onset, onset_expected,
+                                         v * dt / onset_expected, "class C: onset resolved to one step (v dt)"));
+    out.metrics.push_back(bound("slip: max | |F_s| / (mu F_n) - 1 | while slipping", slip_error, 1e-12, false,
+                                "class A: the trial force is rescaled to the Coulomb limit exactly"));
+  }
+  const double g = 9.81, mu = 0.5;
+  {
+    // Sticks: tan(10 deg) < mu, and even the undamped overshoot (2 m g sin)
+    // stays below mu m g cos, so the ball oscillates elastically:
+    // x(t) = (m g sin / K_s)(1 - cos(omega t)), largest 2 m g sin / K_s.
+    const SceneResult r = run_case(ctx, "v03_incline_stick");
+    const double theta = 10 * dem::pi / 180;
+    const dem::ParticleStore &p = r.sim->particles();
+    const double ks = dem::in_series(p.ks[0], r.sim->walls()[0].props.ks);
+    const double dt = r.series.column("time_step_s").back();
+    const double omega_dt = std::sqrt(ks / p.mass[0]) * dt;
+    const double largest = max_abs(r.particles.column("x_m"));
+    out.metrics.push_back(relative_error("incline 10 deg: largest down-slope displacement vs 2 m g sin / K_s",
+                                         largest, 2 * p.mass[0] * g * std::sin(theta) / ks, omega_dt * omega_dt,
+                                         "class B: centred-difference amplitude error, (omega dt)^2"));
+    out.metrics.push_back(bound("incline 10 deg: friction work [J]", r.series.column("friction_dissipated_j").back(),
+                                0.0, false, "the ball must never slip"));
+  }
+  {
+    // Slides: tan(35 deg) > mu; once slipping, friction is mu N, constant,
+    // so the acceleration is g (sin - mu cos) exactly.
+    const SceneResult r = run_case(ctx, "v03_incline_slide");
+    const double theta = 35 * dem::pi / 180;
+    const auto t = r.particles.column("time_s"), vx = r.particles.column("vx_mps");
+    const LineFit fit = fit_line(t, vx, 0.5 * t.back(), t.back());
+    // The velocity column is v(t - dt/2) while t is the force time; the
+    // slope is unaffected.  The normal spring starts at its equilibrium
+    // overlap written to 17 digits, so N is constant to ~1e-12.
+    out.metrics.push_back(relative_error("incline 35 deg: sliding acceleration vs g (sin - mu cos)", fit.slope,
+                                         g * (std::sin(theta) - mu * std::cos(theta)), 1e-9,
+                                         "class A: constant force, the scheme is exact up to round-off"));
+  }
+  return out;
+}
+
+CheckOutcome check_free_flight(const CheckContext &ctx)
+{
+  CheckOutcome out;
+  const SceneResult r = run_case(ctx, "v05_projectile");
+  const auto t = r.particles.column("time_s");
+  const auto x = r.particles.column("x_m"), z = r.particles.column("z_m");
+  const double vx0 = 1, vz0 = 2, g = 9.81;
+  double err = 0;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    err = std::max(err, std::hypot(x[k] - vx0 * t[k], z[k] - (vz0 * t[k] - 0.5 * g * t[k] * t[k])));
+  const double steps = static_cast<double>(r.sim->steps());
+  const double travel = std::hypot(vx0, vz0) * t.back();
+  // Each step rounds x and v once: the error grows like n eps |x| for n
+  // steps (n = 4e4, eps = 1.1e-16: ~5e-12 relative); 100 n eps allows it.
+  out.metrics.push_back(bound("projectile: max |x - (x0 + v0 t + g t^2 / 2)| / travel", err / travel,
+                              100 * steps * 1.1e-16, false, "class A: exact for a constant force; n steps of round-off"));
+  return out;
+}
+} // namespace verify

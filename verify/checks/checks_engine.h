@@ -1,0 +1,12 @@
+// Engine-level checks (VERIFICATION.md items 4, 6, 7, 10).
+#pragma once
+
+#include "verify/checks/check.h"
+
+namespace verify
+{
+CheckOutcome check_objectivity(const CheckContext &ctx);
+CheckOutcome check_critical_step(const CheckContext &ctx);
+CheckOutcome check_second_order(const CheckContext &ctx);
+CheckOutcome check_neighbour_search(const CheckContext &ctx);
+} // namespace verify

@@ -1,0 +1,22 @@
+// The demvv sub-commands, callable from main() and from tests.
+#pragma once
+
+#include "verify/run/run.h"
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+/// demvv run: returns the exit code (0 ok, 3 numerical fault); throws DeckError on bad input.
+int command_run(const std::string &deck_path, const std::vector<std::string> &overrides,
+                const RunOptions &options);
+
+/// demvv defaults: prints the documented deck of a kind.
+int command_defaults(const std::string &kind);
+
+/// demvv verify: runs the checks, writes report.md and report.json to
+/// out_dir; returns 1 if any check fails.
+int command_verify(bool full, const std::string &only, const std::string &out_dir, const std::string &cases_dir,
+                   int threads);
+} // namespace verify

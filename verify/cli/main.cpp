@@ -1,0 +1,104 @@
+// demvv: the command-line entry point (SPEC §10).
+//
+//   demvv run DECK [--out DIR] [--set SECTION/KEY=VALUE]... [--threads N]
+//   demvv defaults KIND
+//   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
+//   demvv bench [--particles N] [--steps N] [--threads N]
+//
+// Exit codes: 0 success; 1 a verification check failed; 2 bad input or
+// usage; 3 the simulation stopped on a numerical fault.
+#include "verify/cli/bench.h"
+#include "verify/cli/commands.h"
+#include "verify/decks/deck.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+int main(int argc, char **argv)
+{
+  CLI::App app{"demvv: DEM verification workbench (SI units, compression positive)"};
+  app.require_subcommand(1);
+
+  std::string deck_path, out_dir, kind;
+  std::vector<std::string> overrides;
+  int threads = 0;
+
+  auto *run = app.add_subcommand("run", "Run a deck and write its run directory");
+  run->add_option("DECK", deck_path, "Deck file (.prm or .json)")->required();
+  run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>)");
+  run->add_option("--set", overrides, "Override a deck entry: SECTION/KEY=VALUE (repeatable)");
+  run->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+    ->check(CLI::Range(1, 1024));
+
+  auto *defaults = app.add_subcommand("defaults", "Print a complete, documented deck of a kind");
+  defaults->add_option("KIND", kind, "Deck kind")->required();
+
+  bool quick = false, full = false;
+  std::string only, cases_dir;
+  auto *verify_cmd = app.add_subcommand("verify", "Run the verification checks and write report.md / report.json");
+  verify_cmd->add_flag("--quick", quick, "Short versions of the long checks (default)");
+  verify_cmd->add_flag("--full", full, "Full versions of the long checks");
+  verify_cmd->add_option("--only", only, "Run only checks whose id or title contains PATTERN");
+  verify_cmd->add_option("--out", out_dir, "Report directory (default runs/verify)");
+  verify_cmd->add_option("--cases", cases_dir, "Case decks directory (default: the source tree's cases/)");
+  verify_cmd->add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+
+  verify::BenchOptions bench;
+  auto *bench_cmd = app.add_subcommand("bench", "Time the engine on a bonded sample and print one line");
+  bench_cmd->add_option("--particles", bench.particles, "Number of balls (default 6000)")->check(CLI::Range(8L, 100000000L));
+  bench_cmd->add_option("--steps", bench.steps, "Timed steps (default 2000)")->check(CLI::Range(1L, 1000000000L));
+  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  bench_cmd->add_option("--repeat", bench.repeat, "Timings to take; the fastest is reported (default 3)")
+    ->check(CLI::Range(1, 100));
+  bench_cmd->add_option("--lattice", bench.lattice, "Sample lattice: sc (coordination 6) or fcc (12)");
+  bench_cmd->add_option("--law", bench.law, "Contact law keyword");
+  bench_cmd->add_option("--sample", bench.sample,
+                        "A prepared sample (sample.json or a prepare deck, prepared once and cached) instead of the "
+                        "lattice; --particles is then ignored");
+
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::CallForHelp &e)
+  {
+    return app.exit(e);
+  }
+  catch (const CLI::CallForAllHelp &e)
+  {
+    return app.exit(e);
+  }
+  catch (const CLI::ParseError &e)
+  {
+    std::cerr << "demvv: " << e.what() << " (see demvv --help)\n";
+    return 2;
+  }
+
+  try
+  {
+    if (run->parsed())
+      return verify::command_run(deck_path, overrides, {out_dir, threads, true});
+    if (defaults->parsed())
+      return verify::command_defaults(kind);
+    if (bench_cmd->parsed())
+      return verify::command_bench(bench);
+    if (verify_cmd->parsed())
+    {
+      if (quick && full)
+        throw verify::DeckError("--quick and --full exclude each other");
+      return verify::command_verify(full, only, out_dir.empty() ? "runs/verify" : out_dir, cases_dir, threads);
+    }
+  }
+  catch (const verify::DeckError &e)
+  {
+    std::cerr << "demvv: " << e.what() << "\n";
+    return 2;
+  }
+  catch (const std::runtime_error &e)
+  {
+    std::cerr << "demvv: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,485 @@
+#include "verify/decks/deck.h"
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/patterns.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace verify
+{
+namespace Patterns = dealii::Patterns;
+
+namespace
+{
+std::string trim(std::string_view s)
+{
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string_view::npos)
+    return {};
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+std::vector<std::string> split(const std::string &s, char sep)
+{
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(s);
+  while (std::getline(in, item, sep))
+    out.push_back(trim(item));
+  if (!s.empty() && s.back() == sep)
+    out.emplace_back();
+  return out;
+}
+
+std::string format_number(double v)
+{
+  if (std::isinf(v))
+    return v > 0 ? "inf" : "-inf";
+  std::ostringstream o;
+  o.precision(12);
+  o << v;
+  return o.str();
+}
+
+/// Levenshtein distance, for "did you mean" hints.
+std::size_t edit_distance(const std::string &a, const std::string &b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// Where a value came from, for error messages: "deck.prm:12" or "--set".
+struct Origin
+{
+  std::string where;
+};
+} // namespace
+
+struct Deck::Impl final : DeckSchema
+{
+  struct Entry
+  {
+    std::unique_ptr<Patterns::PatternBase> pattern;
+    std::string expected; // human description of the allowed values
+    std::string value;
+    bool positive = false; // real with an exclusive lower bound
+    double min = 0;
+  };
+
+  dealii::ParameterHandler prm;
+  std::map<std::string, Entry> entries;
+  std::vector<std::string> stack;
+  std::string kind;
+  std::string path;
+
+  std::string full(const std::string &name) const
+  {
+    std::string key;
+    for (const auto &s : stack)
+      key += s + "/";
+    return key + name;
+  }
+
+  void add(const std::string &name, const std::string &value, std::unique_ptr<Patterns::PatternBase> pattern,
+           std::string expected, const std::string &help)
+  {
+    prm.declare_entry(name, value, *pattern, help);
+    Entry e;
+    e.pattern = std::move(pattern);
+    e.expected = std::move(expected);
+    e.value = value;
+    entries[full(name)] = std::move(e);
+  }
+
+  // --- DeckSchema -------------------------------------------------------
+  void enter(const std::string &section) override
+  {
+    prm.enter_subsection(section);
+    stack.push_back(section);
+  }
+  void leave() override
+  {
+    prm.leave_subsection();
+    stack.pop_back();
+  }
+  void real(const std::string &name, double value, double min, double max, const std::string &unit,
+            const std::string &help, bool min_exclusive) override
+  {
+    const double lo = std::isinf(min) ? -std::numeric_limits<double>::max() : min;
+    const double hi = std::isinf(max) ? std::numeric_limits<double>::max() : max;
+    std::string expected = "a number " + std::string(min_exclusive ? "> " : ">= ") + format_number(min);
+    if (!std::isinf(max))
+      expected += " and <= " + format_number(max);
+    if (!unit.empty() && unit != "-")
+      expected += " (" + unit + ")";
+    add(name, format_number(value), std::make_unique<Patterns::Double>(lo, hi), expected,
+        help + " [" + unit + "]");
+    Entry &e = entries[full(name)];
+    e.positive = min_exclusive;
+    e.min = min;
+  }
+  void integer(const std::string &name, long value, long min, long max, const std::string &help) override
+  {
+    add(name, std::to_string(value), std::make_unique<Patterns::Integer>(static_cast<int>(min), static_cast<int>(max)),
+        "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]", help + " [-]");
+  }
+  void choice(const std::string &name, const std::string &value, const std::vector<std::string> &options,
+              const std::string &help) override
+  {
+    std::string joined;
+    for (const auto &o : options)
+      joined += (joined.empty() ? "" : "|") + o;
+    add(name, value, std::make_unique<Patterns::Selection>(joined), "one of " + joined,
+        help + " Allowed: " + joined + ".");
+  }
+  void flag(const std::string &name, bool value, const std::string &help) override
+  {
+    add(name, value ? "true" : "false", std::make_unique<Patterns::Bool>(), "true or false", help);
+  }
+  void text(const std::string &name, const std::string &value, const std::string &help) override
+  {
+    add(name, value, std::make_unique<Patterns::Anything>(), "any text", help);
+  }
+  void vector3(const std::string &name, const std::string &value, const std::string &unit,
+               const std::string &help) override
+  {
+    add(name, value, std::make_unique<Patterns::List>(Patterns::Double(), 3, 3, ","),
+        "three comma-separated numbers (" + unit + ")", help + " [" + unit + "]");
+  }
+  void real_list(const std::string &name, const std::string &value, unsigned min_len, unsigned max_len,
+                 const std::string &unit, const std::string &help) override
+  {
+    add(name, value, std::make_unique<Patterns::List>(Patterns::Double(), min_len, max_len, ","),
+        "a comma-separated list of " + std::to_string(min_len) + " to " + std::to_string(max_len) +
+          " numbers (" + unit + ")",
+        help + " [" + unit + "]");
+  }
+
+  // --- assignment --------------------------------------------------------
+  [[noreturn]] void reject(const Origin &o, const std::string &message) const
+  {
+    throw DeckError(o.where + ": " + message);
+  }
+
+  std::string suggestion(const std::string &key) const
+  {
+    std::string best;
+    std::size_t best_d = 4;
+    for (const auto &[k, e] : entries)
+    {
+      const std::size_t d = edit_distance(k, key);
+      if (d < best_d)
+      {
+        best_d = d;
+        best = k;
+      }
+    }
+    return best.empty() ? "" : " (did you mean '" + best + "'?)";
+  }
+
+  void assign(const std::string &key, const std::string &raw, const Origin &o)
+  {
+    const auto it = entries.find(key);
+    if (it == entries.end())
+      reject(o, "unknown key '" + key + "'" + suggestion(key) + "; `demvv defaults " + kind +
+                  "` lists the keys of a " + kind + " deck");
+    Entry &e = it->second;
+    const std::string value = trim(raw);
+    bool ok = e.pattern->match(value);
+    if (ok && e.positive)
+      ok = std::stod(value) > e.min;
+    if (!ok)
+      reject(o, "key '" + key + "' has value '" + value + "': expected " + e.expected);
+    e.value = value;
+    const auto parts = split(key, '/');
+    for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+      prm.enter_subsection(parts[k]);
+    prm.set(parts.back(), value);
+    for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+      prm.leave_subsection();
+  }
+
+  const Entry &at(const std::string &key) const
+  {
+    const auto it = entries.find(key);
+    if (it == entries.end())
+      throw std::logic_error("demvv bug: deck key '" + key + "' is not declared for kind " + kind);
+    return it->second;
+  }
+};
+
+namespace
+{
+const DeckKind &find_kind(const std::string &name, const std::string &where)
+{
+  std::string names;
+  for (const DeckKind &k : deck_kinds())
+  {
+    if (k.name == name)
+      return k;
+    names += (names.empty() ? "" : "|") + std::string(k.name);
+  }
+  throw DeckError(where + ": key 'kind' has value '" + name + "': expected one of " + names);
+}
+
+std::unique_ptr<Deck::Impl> make_impl(const std::string &kind, const std::string &where)
+{
+  const DeckKind &k = find_kind(kind, where);
+  auto impl = std::make_unique<Deck::Impl>();
+  impl->kind = kind;
+  std::vector<std::string> names;
+  for (const DeckKind &d : deck_kinds())
+    names.emplace_back(d.name);
+  impl->choice("kind", kind, names, "What this deck describes (fixed once the deck is read).");
+  k.declare(*impl);
+  return impl;
+}
+
+/// A parsed line of a .prm file.
+struct PrmAssignment
+{
+  std::string key;
+  std::string value;
+  int line;
+};
+
+std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
+{
+  std::vector<PrmAssignment> out;
+  std::vector<std::string> stack;
+  std::string raw;
+  int line = 0;
+  while (std::getline(in, raw))
+  {
+    ++line;
+    const auto hash = raw.find('#');
+    const std::string s = trim(hash == std::string::npos ? raw : raw.substr(0, hash));
+    if (s.empty())
+      continue;
+    const std::string where = path + ":" + std::to_string(line);
+    if (s.rfind("subsection ", 0) == 0)
+      stack.push_back(trim(s.substr(11)));
+    else if (s == "end")
+    {
+      if (stack.empty())
+        throw DeckError(where + ": 'end' without a matching 'subsection'");
+      stack.pop_back();
+    }
+    else if (s.rfind("set ", 0) == 0)
+    {
+      const auto eq = s.find('=');
+      if (eq == std::string::npos)
+        throw DeckError(where + ": cannot read '" + s + "': expected 'set KEY = VALUE'");
+      std::string key;
+      for (const auto &sec : stack)
+        key += sec + "/";
+      key += trim(s.substr(4, eq - 4));
+      out.push_back({key, trim(s.substr(eq + 1)), line});
+    }
+    else
+      throw DeckError(where + ": cannot read '" + s +
+                      "': expected 'set KEY = VALUE', 'subsection NAME' or 'end'");
+  }
+  if (!stack.empty())
+    throw DeckError(path + ": subsection '" + stack.back() + "' is never closed with 'end'");
+  return out;
+}
+
+void flatten_json(const nlohmann::json &j, const std::string &prefix, std::vector<PrmAssignment> &out,
+                  const std::string &path)
+{
+  for (const auto &[k, v] : j.items())
+  {
+    const std::string key = prefix.empty() ? k : prefix + "/" + k;
+    if (v.is_object())
+      flatten_json(v, key, out, path);
+    else if (v.is_string())
+      out.push_back({key, v.get<std::string>(), 0});
+    else if (v.is_boolean())
+      out.push_back({key, v.get<bool>() ? "true" : "false", 0});
+    else if (v.is_number())
+      out.push_back({key, v.dump(), 0}); // shortest text that reads back to the same number
+    else
+      throw DeckError(path + ": key '" + key + "' has a JSON " + std::string(v.type_name()) +
+                      ": expected a string, number or boolean");
+  }
+}
+} // namespace
+
+Deck::Deck(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Deck::Deck(Deck &&) noexcept = default;
+Deck &Deck::operator=(Deck &&) noexcept = default;
+Deck::~Deck() = default;
+
+Deck Deck::defaults(const std::string &kind)
+{
+  return Deck(make_impl(kind, "demvv defaults"));
+}
+
+Deck Deck::from_file(const std::string &path, const std::vector<std::string> &overrides)
+{
+  std::ifstream in(path);
+  if (!in)
+    throw DeckError(path + ": cannot open the deck file (does it exist and is it readable?)");
+  std::vector<PrmAssignment> lines;
+  const bool json = path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
+  if (json)
+  {
+    nlohmann::json j;
+    try
+    {
+      in >> j;
+    }
+    catch (const nlohmann::json::exception &e)
+    {
+      throw DeckError(path + ": not valid JSON: " + e.what());
+    }
+    if (!j.is_object())
+      throw DeckError(path + ": expected a JSON object at the top level");
+    flatten_json(j, "", lines, path);
+  }
+  else
+    lines = read_prm(path, in);
+
+  const auto kind_line = std::find_if(lines.begin(), lines.end(), [](const auto &a) { return a.key == "kind"; });
+  if (kind_line == lines.end())
+  {
+    std::string names;
+    for (const DeckKind &k : deck_kinds())
+      names += (names.empty() ? "" : "|") + std::string(k.name);
+    throw DeckError(path + ": key 'kind' is missing: expected 'set kind = " + names + "' at the top level");
+  }
+  const std::string where = kind_line->line > 0 ? path + ":" + std::to_string(kind_line->line) : path;
+  auto impl = make_impl(kind_line->value, where);
+  impl->path = path;
+  for (const auto &a : lines)
+    impl->assign(a.key, a.value, {a.line > 0 ? path + ":" + std::to_string(a.line) : path});
+  Deck deck(std::move(impl));
+  for (const auto &o : overrides)
+  {
+    const auto eq = o.find('=');
+    if (eq == std::string::npos)
+      throw DeckError("--set '" + o + "': expected SECTION/KEY=VALUE");
+    const std::string key = trim(o.substr(0, eq));
+    if (key == "kind")
+      throw DeckError("--set '" + o + "': the kind of a deck cannot be overridden");
+    deck.impl_->assign(key, o.substr(eq + 1), {"--set " + key});
+  }
+  return deck;
+}
+
+const std::string &Deck::kind() const { return impl_->kind; }
+const std::string &Deck::path() const { return impl_->path; }
+
+std::string Deck::directory() const
+{
+  const auto slash = impl_->path.find_last_of('/');
+  return slash == std::string::npos ? "." : impl_->path.substr(0, slash);
+}
+
+std::string Deck::name() const
+{
+  if (impl_->path.empty())
+    return impl_->kind;
+  const auto slash = impl_->path.find_last_of('/');
+  std::string file = slash == std::string::npos ? impl_->path : impl_->path.substr(slash + 1);
+  const auto dot = file.find_last_of('.');
+  std::string stem = dot == std::string::npos ? file : file.substr(0, dot);
+  if (stem == "case" || stem == "deck")
+  {
+    const std::string dir = directory();
+    const auto s2 = dir.find_last_of('/');
+    const std::string parent = s2 == std::string::npos ? dir : dir.substr(s2 + 1);
+    if (!parent.empty() && parent != ".")
+      return parent;
+  }
+  return stem;
+}
+
+void Deck::set(const std::string &key, const std::string &value)
+{
+  impl_->assign(key, value, {"override " + key});
+}
+
+std::string Deck::text(const std::string &key) const { return impl_->at(key).value; }
+double Deck::real(const std::string &key) const { return std::stod(impl_->at(key).value); }
+long Deck::integer(const std::string &key) const { return std::stol(impl_->at(key).value); }
+bool Deck::flag(const std::string &key) const
+{
+  const std::string &v = impl_->at(key).value;
+  return v == "true" || v == "yes";
+}
+
+std::vector<double> Deck::real_list(const std::string &key) const
+{
+  std::vector<double> out;
+  const std::string &v = impl_->at(key).value;
+  if (trim(v).empty())
+    return out;
+  for (const auto &item : split(v, ','))
+    out.push_back(std::stod(item));
+  return out;
+}
+
+std::array<double, 3> Deck::vector3(const std::string &key) const
+{
+  const auto v = real_list(key);
+  return {{v.at(0), v.at(1), v.at(2)}};
+}
+
+std::string Deck::file(const std::string &key) const
+{
+  const std::string f = text(key);
+  if (f.empty() || f.front() == '/')
+    return f;
+  return directory() + "/" + f;
+}
+
+void Deck::fail(const std::string &key, const std::string &expected) const
+{
+  const std::string where = impl_->path.empty() ? "deck" : impl_->path;
+  throw DeckError(where + ": key '" + key + "' has value '" + impl_->at(key).value + "': " + expected);
+}
+
+std::string Deck::resolved() const
+{
+  std::ostringstream out;
+  out << "# demvv resolved deck: every entry, defaults filled in (SI units).\n";
+  impl_->prm.print_parameters(out, static_cast<dealii::ParameterHandler::OutputStyle>(
+                                     dealii::ParameterHandler::ShortPRM |
+                                     dealii::ParameterHandler::KeepDeclarationOrder));
+  return out.str();
+}
+
+std::string Deck::documented() const
+{
+  std::ostringstream out;
+  out << "# demvv deck of kind '" << impl_->kind << "': every entry with its default.\n"
+      << "# Units in brackets; SI throughout; compression positive.\n";
+  impl_->prm.print_parameters(out, static_cast<dealii::ParameterHandler::OutputStyle>(
+                                     dealii::ParameterHandler::PRM |
+                                     dealii::ParameterHandler::KeepDeclarationOrder));
+  return out.str();
+}
+} // namespace verify

@@ -1,0 +1,61 @@
+// Sample files: a prepared specimen saved so that many tests can start from
+// it and any run can continue exactly where it stopped.
+//
+// Format (JSON, SI units, compression positive; version 1):
+//   format, format_version, units, title, seed, contact_law
+//   cell        {diameter_m, height_m, bottom, top, lateral}  wall indices (-1: none)
+//   preparation the preparation report (stages, measures; see PackingReport)
+//   provenance  who wrote it (demvv version, git SHA, deck hash, ...)
+//   clock       time_s, steps, last_time_step_s and the energy ledger
+//   walls       [{name, shape, point_m, direction, radius_m, velocity_mps,
+//                 radial_velocity_mps, kn_npm, ks_npm, friction, enabled}]
+//   balls       {columns, rows}: x_m y_m z_m radius_m density_kgpm3 kn_npm
+//               ks_npm friction vx_mps vy_mps vz_mps wx_radps wy_radps wz_radps
+//               hold_velocity hold_spin boundary_work_j body_work_j
+//               damping_work_j kinetic_energy_j
+//   contacts    {columns, rows}: first second kn_npm ks_npm friction bonded
+//               normal_strength_n shear_strength_n touching normal_force_n
+//               overlap_m nx ny nz shear_x_n shear_y_n shear_z_n
+//               friction_work_j bond_energy_j
+//   wall_contacts {columns, rows}: wall ball + the contact columns above from
+//               touching onwards, for every (wall, ball) pair with history
+// Numbers are written in their shortest exact form, so reading a file gives
+// back the same doubles: a run continued from a file matches the run that
+// never stopped.
+#pragma once
+
+#include "dem/prep_packing.h"
+#include "dem/simulation.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace verify
+{
+struct SampleFile
+{
+  dem::Snapshot snapshot;
+  dem::Specimen cell; ///< wall indices and size; its particles/walls are in the snapshot
+  std::string contact_law = "linear";
+  long long seed = 0;
+  nlohmann::json preparation; ///< the report, as written
+  nlohmann::json provenance;
+  std::string title;
+};
+
+/// Gives every ball of a loaded sample the properties of `ball` (density,
+/// kn, ks, friction; positions and radii kept), every contact the pair
+/// constants that follow, the platens `platen`, and restarts the clock at
+/// zero (keeping the last time step) for a new test.
+void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const dem::WallProps &platen);
+
+/// Writes a sample file atomically.
+void write_sample(const std::string &path, const SampleFile &sample);
+
+/// Reads a sample file; DeckError (naming the file and what is wrong) on failure.
+SampleFile read_sample(const std::string &path);
+
+/// The preparation report as JSON.
+nlohmann::json report_json(const dem::PackingReport &report);
+} // namespace verify

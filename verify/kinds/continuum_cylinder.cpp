@@ -1,0 +1,351 @@
+#include "verify/kinds/continuum_cylinder.h"
+
+#include "verify/run/analysis.h"
+#include "verify/decks/continuum_material.h"
+#include "verify/checks/continuum_reference.h"
+#include "verify/io/output.h"
+
+#include "continuum/numerical_failure.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace verify
+{
+namespace
+{
+constexpr double inf = std::numeric_limits<double>::infinity();
+}
+
+void declare_cylinder_geometry(DeckSchema &s)
+{
+  s.enter("geometry");
+  s.real("radius", 0.01555, 0, inf, "m", "Radius R of the cylinder (the DEM stand-in sample: 31.1 mm diameter).",
+         true);
+  s.real("height", 0.0311, 0, inf, "m", "Height H of the cylinder, between R/4 and 16 R.", true);
+  s.leave();
+}
+
+void declare_cylinder(DeckSchema &s)
+{
+  s.text("title", "", "One line saying what this run is for (copied to summary.json).");
+  declare_cylinder_geometry(s);
+  declare_continuum_material(s);
+  s.enter("loading");
+  s.choice("platens", "frictionless", {"frictionless", "bonded"},
+           "Platen contact: 'frictionless' (axial displacement only: homogeneous, equals the 1-D closed form) or "
+           "'bonded' (no radial motion on the platens: barrelling).");
+  s.real("strain rate", 0.005, 0, inf, "1/s", "Axial strain rate, compression positive (thesis §7.2.3: 0.005).",
+         true);
+  s.real("final strain", 0.02, 0, 0.2, "-", "Axial strain at which the test stops (small-strain theory).", true);
+  s.leave();
+  s.enter("discretisation");
+  s.choice("model", "axisymmetric", {"axisymmetric", "3d"},
+           "'axisymmetric': (r, z) meridian with hoop strain and weight 2 pi r; '3d': a quarter cylinder with "
+           "symmetry planes (a check of the axisymmetric model).");
+  s.integer("degree", 2, 1, 4, "Polynomial degree p of the Q_p elements (and of the geometry mapping).");
+  s.integer("refinements", 2, 0, 8,
+            "Global refinements of the coarse mesh, whose cells are about R wide (h = R / 2^refinements).");
+  s.integer("time steps", 100, 1, 10000000, "Uniform time steps to the final strain (trapezoidal update, order 2).");
+  s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.", true);
+  s.leave();
+  s.enter("study");
+  s.real_list("gci refinements", "", 0, 4, "-",
+              "Empty: one run.  Three or four increasing refinement levels: a grid-convergence study (Roache's GCI, "
+              "Celik et al. 2008) of the peak stress and the stress at 1 % strain, one run per level in "
+              "level_<N>/; with four levels the coarser triplet is reported too.");
+  s.real("gci safety factor", 1.25, 1, 3, "-", "Safety factor Fs of the GCI (1.25 for three meshes).");
+  s.leave();
+  s.enter("measurement");
+  s.real_list("fit window", "0, 0.002", 2, 2, "-",
+              "Axial strain interval over which the initial modulus and Poisson's ratio are fitted.");
+  s.leave();
+  s.enter("output");
+  s.flag("paraview", false, "Write ParaView files (displacement, cell stresses, Kelvin strain) to paraview/.");
+  s.integer("paraview every", 10, 1, 10000000, "Time steps between ParaView frames (the last step is always written).");
+  s.leave();
+}
+
+void read_cylinder_geometry(const Deck &deck, double &radius, double &height)
+{
+  radius = deck.real("geometry/radius");
+  height = deck.real("geometry/height");
+  if (height < 0.25 * radius || height > 16 * radius)
+    deck.fail("geometry/height", "expected a height between R/4 and 16 R (the coarse mesh has cells about R wide)");
+}
+
+continuum::CylinderSpec read_cylinder_spec(const Deck &deck)
+{
+  continuum::CylinderSpec spec;
+  read_cylinder_geometry(deck, spec.radius, spec.height);
+  spec.solid = read_continuum_material(deck).solid;
+  spec.platens = deck.text("loading/platens") == "bonded" ? continuum::Platens::bonded
+                                                           : continuum::Platens::frictionless;
+  spec.strain_rate = deck.real("loading/strain rate");
+  spec.final_strain = deck.real("loading/final strain");
+  spec.time_steps = static_cast<unsigned int>(deck.integer("discretisation/time steps"));
+  spec.geometry = deck.text("discretisation/model") == "3d" ? continuum::Geometry::three_dimensional
+                                                            : continuum::Geometry::axisymmetric;
+  spec.degree = static_cast<unsigned int>(deck.integer("discretisation/degree"));
+  spec.refinements = static_cast<unsigned int>(deck.integer("discretisation/refinements"));
+  spec.solver_tolerance = deck.real("discretisation/solver tolerance");
+  spec.paraview_every = static_cast<unsigned int>(deck.integer("output/paraview every"));
+  return spec;
+}
+
+double interpolate(const std::vector<double> &xs, const std::vector<double> &ys, double x)
+{
+  for (std::size_t k = 1; k < xs.size(); ++k)
+    if (xs[k - 1] <= x && x <= xs[k])
+      return ys[k - 1] + (ys[k] - ys[k - 1]) * (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
+  return std::nan("");
+}
+
+namespace
+{
+const std::vector<std::string> columns = {"time_s",
+                                          "axial_strain",
+                                          "axial_stress_pa",
+                                          "radial_strain",
+                                          "axial_stress_closed_form_pa",
+                                          "radial_strain_closed_form",
+                                          "cg_iterations"};
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+/// One compression test; the series streams to series_path when it is not empty.
+CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, const nlohmann::json &material,
+                        const std::string &series_path)
+{
+  CylinderResult run;
+  run.series = Series(columns);
+  if (!series_path.empty())
+    run.series.stream_to(series_path, "demvv cylinder '" + deck.name() +
+                                        "': SI units; compression positive for axial stress and strain; "
+                                        "radial strain = -u_r/R at mid-height; closed form: eq. 7.18 with the "
+                                        "solid's uniaxial chain (homogeneous state)");
+  const dem::BurgersConstants uniaxial = burgers_constants(spec.solid.uniaxial());
+  const continuum::ParallelInfo mpi = continuum::parallel_info();
+  Progress progress(mpi.rank == 0 ? "cylinder " + deck.name() : "");
+  const auto start = std::chrono::steady_clock::now();
+  long iterations = 0;
+  try
+  {
+    continuum::CompressionTest test(spec);
+    run.mesh = test.mesh();
+    test.run([&](const continuum::CylinderStep &s) {
+      const double closed = uniaxial.constant_velocity_force(s.time, spec.strain_rate);
+      run.series.add({s.time, s.axial_strain, s.axial_stress, s.radial_strain, closed,
+                      spec.solid.lateral_strain(s.axial_strain, closed) + 0.0, double(s.iterations)});
+      iterations += s.iterations;
+      run.status.steps = s.step;
+      run.status.time = s.time;
+      if (mpi.rank == 0)
+        progress.update(double(s.step) / spec.time_steps, "strain " + std::to_string(s.axial_strain));
+    });
+  }
+  catch (const continuum::NumericalFailure &f)
+  {
+    run.status.fault = true;
+    run.status.step = f.step();
+    run.status.time = f.time();
+    run.status.message = f.what();
+  }
+  progress.finish();
+  run.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const auto eps = run.series.column("axial_strain");
+  const auto sig = run.series.column("axial_stress_pa");
+  const auto rad = run.series.column("radial_strain");
+  const auto closed = run.series.column("axial_stress_closed_form_pa");
+  const auto window = deck.real_list("measurement/fit window");
+  const auto [modulus, poisson] = fit_elastic(eps, sig, rad, window[0], window[1]);
+  const Peak pk = peak(eps, sig);
+  double deviation = 0, scale = 0;
+  for (std::size_t k = 0; k < sig.size(); ++k)
+  {
+    deviation = std::max(deviation, std::abs(sig[k] - closed[k]));
+    scale = std::max(scale, std::abs(closed[k]));
+  }
+  run.summary = {
+    {"kind", "cylinder"},
+    {"title", deck.text("title")},
+    {"status", run.status.to_json()},
+    {"geometry", {{"radius_m", spec.radius},
+                  {"height_m", spec.height},
+                  {"model", deck.text("discretisation/model")},
+                  {"nominal_platen_area_m2", run.mesh.platen_area},
+                  {"mesh_platen_area_m2", run.mesh.mesh_platen_area}}},
+    {"material", material},
+    {"loading", {{"platens", deck.text("loading/platens")},
+                 {"strain_rate_per_s", spec.strain_rate},
+                 {"final_strain", spec.final_strain}}},
+    {"discretisation", {{"degree", spec.degree},
+                        {"refinements", spec.refinements},
+                        {"cells", run.mesh.cells},
+                        {"dofs", run.mesh.dofs},
+                        {"cell_size_m", run.mesh.cell_size},
+                        {"time_steps", spec.time_steps},
+                        {"time_step_s", run.mesh.time_step},
+                        {"time_scheme", "trapezoidal (Crank-Nicolson), order 2"},
+                        {"solver", "CG + Trilinos AMG"},
+                        {"solver_tolerance", spec.solver_tolerance},
+                        {"cg_iterations", iterations},
+                        {"mpi_ranks", run.mesh.ranks}}},
+    {"peak_stress_pa", number_or_null(pk.value)},
+    {"strain_at_peak", number_or_null(pk.at)},
+    {"stress_at_1_percent_strain_pa", number_or_null(interpolate(eps, sig, 0.01))},
+    {"initial_modulus_pa", modulus.points >= 2 ? nlohmann::json(modulus.slope) : nlohmann::json(nullptr)},
+    {"poisson_ratio", poisson.points >= 2 ? nlohmann::json(poisson.slope) : nlohmann::json(nullptr)},
+    {"fit_window_axial_strain", window},
+    {"radial_strain_at_end", rad.empty() ? nlohmann::json(nullptr) : nlohmann::json(rad.back())},
+    {"max_deviation_from_homogeneous_closed_form", number_or_null(scale > 0 ? deviation / scale : std::nan(""))},
+    {"wall_seconds", run.status.wall_seconds}};
+  return run;
+}
+
+/// The refinement levels of a GCI study (empty: a single run).
+std::vector<unsigned int> study_levels(const Deck &deck)
+{
+  const std::string key = "study/gci refinements";
+  std::vector<unsigned int> levels;
+  for (const double v : deck.real_list(key))
+  {
+    if (!(v >= 0 && v <= 8 && v == std::floor(v)) || (!levels.empty() && v <= levels.back()))
+      deck.fail(key, "expected increasing integer refinement levels between 0 and 8");
+    levels.push_back(static_cast<unsigned int>(v));
+  }
+  if (!levels.empty() && levels.size() < 3)
+    deck.fail(key, "expected three or four levels (a GCI needs three meshes)");
+  return levels;
+}
+
+nlohmann::json gci_json(const GciResult &g)
+{
+  return {{"values_fine_to_coarse", {g.phi[0], g.phi[1], g.phi[2]}},
+          {"cell_sizes_m_fine_to_coarse", {g.h[0], g.h[1], g.h[2]}},
+          {"observed_order", number_or_null(g.order)},
+          {"extrapolated", number_or_null(g.extrapolated)},
+          {"approximate_relative_error", g.approximate_error},
+          {"extrapolated_relative_error", number_or_null(g.extrapolated_error)},
+          {"gci_fine", number_or_null(g.gci_fine)},
+          {"gci_coarse", number_or_null(g.gci_coarse)},
+          {"asymptotic_range_ratio", number_or_null(g.asymptotic_ratio)},
+          {"monotone", g.monotone}};
+}
+
+/// GCI of the peak stress and the stress at 1 % strain over three levels.
+void add_gci(const std::vector<CylinderResult> &runs, std::size_t finest, double safety, CylinderResult &out,
+             nlohmann::json &summary)
+{
+  double h[3], peak_stress[3], at_one[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    const CylinderResult &r = runs[finest - i];
+    h[i] = r.mesh.cell_size;
+    peak_stress[i] = r.summary["peak_stress_pa"].is_number() ? r.summary["peak_stress_pa"].get<double>() : std::nan("");
+    at_one[i] = r.summary["stress_at_1_percent_strain_pa"].is_number()
+                  ? r.summary["stress_at_1_percent_strain_pa"].get<double>()
+                  : std::nan("");
+  }
+  out.gci.push_back(grid_convergence_index(h, peak_stress, safety));
+  out.gci.push_back(grid_convergence_index(h, at_one, safety));
+  summary.push_back({{"levels_fine_to_coarse", {runs[finest].summary["discretisation"]["refinements"],
+                                                runs[finest - 1].summary["discretisation"]["refinements"],
+                                                runs[finest - 2].summary["discretisation"]["refinements"]}},
+                     {"peak_stress_pa", gci_json(out.gci[out.gci.size() - 2])},
+                     {"stress_at_1_percent_strain_pa", gci_json(out.gci.back())}});
+}
+} // namespace
+
+CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  continuum::CylinderSpec spec = read_cylinder_spec(deck);
+  const std::vector<unsigned int> levels = study_levels(deck);
+  const auto window = deck.real_list("measurement/fit window");
+  if (!(window[1] > window[0]))
+    deck.fail("measurement/fit window", "expected two increasing strains");
+  const continuum::ParallelInfo mpi = continuum::parallel_info();
+  const bool writer = mpi.rank == 0 && !options.out_dir.empty();
+  std::unique_ptr<RunDirectory> dir;
+  if (writer)
+    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, 0);
+  const bool paraview = deck.flag("output/paraview") && !options.out_dir.empty();
+  const nlohmann::json material = read_continuum_material(deck).description;
+
+  if (levels.empty())
+  {
+    if (paraview)
+      spec.paraview_directory = options.out_dir + "/paraview";
+    CylinderResult run = compress(deck, spec, material, writer ? dir->path("series.csv") : "");
+    if (dir)
+      dir->write_summary(run.summary);
+    return run;
+  }
+
+  std::vector<CylinderResult> runs;
+  nlohmann::json level_summaries = nlohmann::json::array();
+  RunStatus status;
+  for (const unsigned int level : levels)
+  {
+    spec.refinements = level;
+    const std::string level_dir = options.out_dir + "/level_" + std::to_string(level);
+    if (paraview)
+      spec.paraview_directory = level_dir + "/paraview";
+    if (writer)
+      make_directories(level_dir);
+    runs.push_back(compress(deck, spec, material, writer ? level_dir + "/series.csv" : ""));
+    nlohmann::json &s = runs.back().summary;
+    if (writer)
+    {
+      nlohmann::json copy = s;
+      copy["provenance"] = provenance(threads, 0, deck.resolved());
+      copy["provenance"]["note"] = "one level of a GCI study: refinements overridden to " + std::to_string(level);
+      write_atomically(level_dir + "/summary.json", copy.dump(2) + "\n");
+    }
+    level_summaries.push_back({{"refinements", level},
+                               {"cells", runs.back().mesh.cells},
+                               {"dofs", runs.back().mesh.dofs},
+                               {"cell_size_m", runs.back().mesh.cell_size},
+                               {"peak_stress_pa", s["peak_stress_pa"]},
+                               {"stress_at_1_percent_strain_pa", s["stress_at_1_percent_strain_pa"]},
+                               {"wall_seconds", runs.back().status.wall_seconds}});
+    status.steps += runs.back().status.steps;
+    status.wall_seconds += runs.back().status.wall_seconds;
+    status.time = runs.back().status.time;
+    if (runs.back().status.fault)
+    {
+      status.fault = true;
+      status.step = runs.back().status.step;
+      status.message = "level " + std::to_string(level) + ": " + runs.back().status.message;
+      break;
+    }
+  }
+
+  CylinderResult out;
+  out.series = std::move(runs.back().series);
+  out.mesh = runs.back().mesh;
+  out.status = status;
+  nlohmann::json studies = nlohmann::json::array();
+  if (!status.fault)
+  {
+    const double safety = deck.real("study/gci safety factor");
+    add_gci(runs, runs.size() - 1, safety, out, studies);
+    if (runs.size() == 4)
+      add_gci(runs, 2, safety, out, studies);
+  }
+  out.summary = {{"kind", "cylinder"},
+                 {"title", deck.text("title")},
+                 {"status", status.to_json()},
+                 {"study", "grid convergence index, Celik et al. (2008); finest triplet first"},
+                 {"levels", level_summaries},
+                 {"gci", studies},
+                 {"material", material},
+                 {"wall_seconds", status.wall_seconds}};
+  if (dir)
+    dir->write_summary(out.summary);
+  return out;
+}
+} // namespace verify

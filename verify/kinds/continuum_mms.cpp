@@ -1,0 +1,163 @@
+#include "verify/kinds/continuum_mms.h"
+
+#include "verify/kinds/continuum_cylinder.h"
+#include "verify/decks/continuum_material.h"
+#include "verify/io/output.h"
+
+#include "continuum/numerical_failure.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace verify
+{
+void declare_mms(DeckSchema &s)
+{
+  s.text("title", "", "One line saying what this study is for (copied to summary.json).");
+  declare_cylinder_geometry(s);
+  declare_continuum_material(s);
+  s.enter("study");
+  s.choice("variable", "space", {"space", "time"},
+           "'space': refine the mesh (time functions quadratic, integrated exactly); 'time': halve the time step "
+           "on one mesh (fields affine in space, represented exactly).");
+  s.choice("model", "axisymmetric", {"axisymmetric", "3d"}, "Axisymmetric meridian or 3D quarter cylinder.");
+  s.integer("degree", 2, 1, 4, "Polynomial degree p of the Q_p elements.");
+  s.real_list("levels", "0, 1, 2, 3", 3, 8, "-",
+              "Refinement levels (space) or halvings of the time step (time), increasing; the observed orders of "
+              "the finest three are reported.");
+  s.real("duration", 2, 0, std::numeric_limits<double>::infinity(), "s", "Time span T of the manufactured solution.",
+         true);
+  s.integer("time steps", 2, 1, 1000000, "Time steps at every level (space) or at level 0 (time).");
+  s.integer("refinements", 0, 0, 8, "Mesh refinements of the time study.");
+  s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.", true);
+  s.leave();
+}
+
+continuum::MmsSpec read_mms_spec(const Deck &deck)
+{
+  continuum::MmsSpec spec;
+  read_cylinder_geometry(deck, spec.radius, spec.height);
+  spec.solid = read_continuum_material(deck).solid;
+  spec.variable = deck.text("study/variable") == "time" ? continuum::MmsVariable::time : continuum::MmsVariable::space;
+  spec.geometry = deck.text("study/model") == "3d" ? continuum::Geometry::three_dimensional
+                                                  : continuum::Geometry::axisymmetric;
+  spec.degree = static_cast<unsigned int>(deck.integer("study/degree"));
+  spec.levels.clear();
+  for (const double v : deck.real_list("study/levels"))
+  {
+    if (!(v >= 0 && v <= 8 && v == std::floor(v)) || (!spec.levels.empty() && v <= spec.levels.back()))
+      deck.fail("study/levels", "expected increasing integers between 0 and 8");
+    spec.levels.push_back(static_cast<unsigned int>(v));
+  }
+  spec.duration = deck.real("study/duration");
+  spec.time_steps = static_cast<unsigned int>(deck.integer("study/time steps"));
+  spec.refinements = static_cast<unsigned int>(deck.integer("study/refinements"));
+  spec.solver_tolerance = deck.real("study/solver tolerance");
+  return spec;
+}
+
+std::vector<ConvergenceTable> mms_tables(const std::vector<continuum::MmsLevel> &levels, const continuum::MmsSpec &spec)
+{
+  const bool space = spec.variable == continuum::MmsVariable::space;
+  const double p = spec.degree;
+  const std::string study = std::string(space ? "MMS in space, Q" : "MMS in time, Q") + std::to_string(spec.degree) +
+                            (spec.geometry == continuum::Geometry::axisymmetric ? " axisymmetric" : " 3D quarter") +
+                            (spec.solid.bulk == continuum::BulkResponse::same_shape ? ", same-shape bulk"
+                                                                                     : ", elastic bulk");
+  struct Quantity
+  {
+    const char *name;
+    double expected;
+    double continuum::MmsLevel::*error;
+  };
+  const Quantity quantities[] = {
+    {"relative L2 error of u", space ? p + 1 : 0, &continuum::MmsLevel::displacement_l2},
+    {"relative H1-seminorm error of u", space ? p : 0, &continuum::MmsLevel::displacement_h1},
+    {"relative L2 error of the stress", space ? p : 2, &continuum::MmsLevel::stress_l2},
+    {"relative L2 error of the Kelvin strain", space ? p : 2, &continuum::MmsLevel::kelvin_l2}};
+  std::vector<ConvergenceTable> tables;
+  for (const Quantity &q : quantities)
+  {
+    ConvergenceTable t;
+    t.title = study + ": " + q.name;
+    t.h_name = space ? "h [m]" : "dt [s]";
+    t.error_name = q.name;
+    t.expected_order = q.expected;
+    for (const continuum::MmsLevel &l : levels)
+      t.add(space ? l.cell_size : l.time_step, l.*q.error);
+    tables.push_back(t);
+  }
+  return tables;
+}
+
+MmsResult run_mms_deck(const Deck &deck, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  const continuum::MmsSpec spec = read_mms_spec(deck);
+  const bool writer = continuum::parallel_info().rank == 0 && !options.out_dir.empty();
+  std::unique_ptr<RunDirectory> dir;
+  if (writer)
+    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, 0);
+
+  MmsResult result;
+  const auto start = std::chrono::steady_clock::now();
+  try
+  {
+    result.levels = continuum::run_mms(spec);
+  }
+  catch (const continuum::NumericalFailure &f)
+  {
+    result.status.fault = true;
+    result.status.time = f.time();
+    result.status.step = f.step();
+    result.status.message = f.what();
+  }
+  result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const bool space = spec.variable == continuum::MmsVariable::space;
+  const std::vector<ConvergenceTable> tables = mms_tables(result.levels, spec);
+  const std::vector<std::string> names = {"displacement_l2", "displacement_h1", "stress_l2", "kelvin_l2"};
+  nlohmann::json orders = nlohmann::json::object(), expected = nlohmann::json::object();
+  for (std::size_t k = 0; k < names.size(); ++k)
+  {
+    orders[names[k]] = tables[k].last_order();
+    expected[names[k]] = tables[k].expected_order;
+  }
+  result.summary = {
+    {"kind", "mms"},
+    {"title", deck.text("title")},
+    {"status", result.status.to_json()},
+    {"variable", deck.text("study/variable")},
+    {"model", deck.text("study/model")},
+    {"degree", spec.degree},
+    {"errors", "relative to the norm of the manufactured field, at the final time"},
+    {"observed_orders_finest_pair", orders},
+    {"expected_orders", expected},
+    {"material", read_continuum_material(deck).description},
+    {"wall_seconds", result.status.wall_seconds}};
+  if (dir)
+  {
+    Series table({"level", "cells", "dofs", "cell_size_m", "time_step_s", "steps", "displacement_l2",
+                  "displacement_h1", "stress_l2", "kelvin_l2", "order_displacement_l2", "order_displacement_h1",
+                  "order_stress_l2", "order_kelvin_l2"});
+    table.stream_to(dir->path("convergence.csv"),
+                    "demvv mms '" + deck.name() + "': relative errors at the final time; orders against the "
+                                                  "previous level (" + std::string(space ? "h" : "dt") + ")");
+    for (std::size_t i = 0; i < result.levels.size(); ++i)
+    {
+      const continuum::MmsLevel &l = result.levels[i];
+      std::vector<double> row = {double(l.level), double(l.cells), double(l.dofs), l.cell_size, l.time_step,
+                                 double(l.steps)};
+      for (const ConvergenceTable &t : tables)
+        row.push_back(t.rows[i].error);
+      for (const ConvergenceTable &t : tables)
+        row.push_back(i == 0 ? std::nan("") : t.rows[i].order);
+      table.add(row);
+    }
+    write_atomically(dir->path("convergence.txt"), continuum::mms_convergence_text(result.levels, spec.variable));
+    dir->write_summary(result.summary);
+  }
+  return result;
+}
+} // namespace verify

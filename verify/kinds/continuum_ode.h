@@ -1,0 +1,34 @@
+// burgers_ode decks: one Burger's chain (a contact, or a material point in
+// one dimension) under a prescribed displacement or force history,
+// integrated with SUNDIALS CVODE (continuum/burgers_ode.h), written beside
+// its closed form (continuum_reference.h).
+//
+// Outputs: series.csv (time, displacement or strain, force or stress, the
+// closed form of the computed quantity, Kelvin and dashpot displacements;
+// units in the column names), summary.json (constants, history, solver
+// statistics, largest error against the closed form, provenance), deck.prm.
+#pragma once
+
+#include "verify/decks/deck.h"
+#include "verify/run/run.h"
+#include "verify/io/series.h"
+
+#include <nlohmann/json.hpp>
+
+namespace verify
+{
+void declare_burgers_ode(DeckSchema &s);
+
+struct OdeResult
+{
+  Series series;
+  nlohmann::json summary;
+  RunStatus status;
+  /// max_t |x - x_closed| / max_t |x_closed| for the computed quantity x
+  /// (force under displacement control, displacement under force); NaN
+  /// without a closed form.
+  double relative_error = 0;
+};
+
+OdeResult run_burgers_ode(const Deck &deck, const RunOptions &options);
+} // namespace verify

@@ -1,0 +1,195 @@
+#include "verify/kinds/prepare.h"
+
+#include "verify/decks/deck_sections.h"
+#include "verify/io/output.h"
+#include "verify/io/paraview.h"
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+
+namespace verify
+{
+namespace
+{
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+/// Deck key of each PackingSettings field a PackingError can name.
+std::string key_of(const std::string &setting)
+{
+  if (setting == "target solid fraction")
+    return "sample/target solid fraction";
+  if (setting == "radius")
+    return "sample/ball radius";
+  if (setting == "diameter")
+    return "sample/diameter";
+  return "sample/particles";
+}
+
+dem::PackingSettings read_settings(const Deck &d)
+{
+  dem::PackingSettings s;
+  s.particles = d.integer("sample/particles");
+  s.radius = d.real("sample/ball radius");
+  s.diameter = d.real("sample/diameter");
+  s.height = d.real("sample/height");
+  s.aspect = d.real("sample/aspect ratio");
+  s.target_solid_fraction = d.real("sample/target solid fraction");
+  s.seed = static_cast<std::uint64_t>(d.integer("sample/seed"));
+  apply_ball_properties(d, s.ball);
+  s.walls = {d.real("walls/normal stiffness"), d.real("walls/shear stiffness"), 0};
+  s.growth_stages = static_cast<int>(d.integer("preparation/growth stages"));
+  s.growth_cycles = d.integer("preparation/growth cycles");
+  s.servo_stress = d.real("preparation/servo stress");
+  s.stress_target = d.real("preparation/stress target");
+  s.equilibrium_ratio = d.real("preparation/equilibrium ratio");
+  s.max_cycles = d.integer("preparation/max cycles");
+  s.min_contacts = static_cast<int>(d.integer("preparation/min contacts"));
+  s.max_expansion = d.real("preparation/max expansion");
+  s.local_damping = d.real("preparation/local damping");
+  if (s.local_damping >= 1)
+    d.fail("preparation/local damping", "expected a number < 1");
+  s.bonds = read_bond_settings(d);
+  s.bond = d.text("bonds/install") == "touching";
+  if (s.particles == 0 && (s.diameter <= 0 || s.height <= 0))
+    d.fail("sample/particles", "expected a number of balls, or a cell diameter and height (both > 0)");
+  return s;
+}
+} // namespace
+
+void declare_prepare(DeckSchema &s)
+{
+  s.text("title", "", "One line saying what this sample is for (copied to the sample file).");
+  s.enter("sample");
+  s.integer("particles", 6000, 0, 100000000,
+            "Number of balls; 0 takes the cell diameter and height and eq. 5.1 (N = 3 V (1 - n) / (4 pi R^3)).");
+  s.real("ball radius", 0.885e-3, 0, inf, "m", "Final radius of every ball (thesis: 1.77 mm diameter sand).", true);
+  s.real("diameter", 0, 0, inf, "m", "Cell diameter, used when particles = 0.");
+  s.real("height", 0, 0, inf, "m", "Cell height, used when particles = 0.");
+  s.real("aspect ratio", 1, 0, inf, "-", "Cell height / diameter when the number of balls is given (thesis: H = D).",
+         true);
+  s.real("target solid fraction", 0.64, 0, 1, "-",
+         "Solid fraction 1 - n that sizes the cell (eq. 5.1); at most 0.7405 (densest packing of equal spheres).  "
+         "Above random close packing (about 0.64) the grown balls are jammed and the servo stage relaxes them; "
+         "below it frictionless balls never jam in a fixed cell and the servo must compact them (slowly).",
+         true);
+  s.integer("seed", 1, 0, std::numeric_limits<int>::max(), "Seed of the random placement.");
+  s.leave();
+  declare_ball_properties(s);
+  s.enter("walls");
+  s.real("normal stiffness", 1.2e7, 0, inf, "N/m", "Normal stiffness of the cell walls (in series with the ball's).",
+         true);
+  s.real("shear stiffness", 0, 0, inf, "N/m",
+         "Shear stiffness of the cell walls (they are frictionless during preparation, thesis §5.3.2).");
+  s.leave();
+  s.enter("preparation");
+  s.integer("growth stages", 40, 1, 10000, "Stages in which the balls grow from half to full radius.");
+  s.integer("growth cycles", 100, 0, 100000000,
+            "Relaxation cycles after each growth stage (velocities are zeroed before each increment).");
+  s.real("servo stress", 1e5, 0, inf, "Pa",
+         "Confining stress the three walls are servo-controlled to before the radius reduction (thesis §6.1: "
+         "0.1 MPa); 0 skips the servo stage.");
+  s.real("stress target", 1e3, 0, inf, "Pa",
+         "Mean stress the radius reduction must reach (thesis §5.3.2: 1 kPa).", true);
+  s.real("equilibrium ratio", 1e-3, 0, 1, "-",
+         "Unbalanced-force ratio below which a stage counts as in equilibrium (the servo and growth stages use "
+         "ten times it).",
+         true);
+  s.integer("max cycles", 200000, 100, 2000000000, "Cycle budget of each equilibrium stage.");
+  s.integer("min contacts", 4, 0, 12, "Contacts (walls count) every ball should have before bonding (thesis §5.3.3).");
+  s.real("max expansion", 0.01, 0, 0.1, "-",
+         "Largest relative growth of a ball with too few contacts (thesis: typically less than 1 %).");
+  s.real("local damping", 0.7, 0, 1, "-", "Local damping during preparation (must be < 1).");
+  s.leave();
+  declare_bonds(s, {"touching", "none"}, false);
+  s.enter("output");
+  s.flag("paraview", true, "Write a ParaView view of the prepared sample to paraview/.");
+  s.leave();
+}
+
+PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  const dem::PackingSettings settings = read_settings(deck);
+  try
+  {
+    dem::cell_size(settings); // refuse an impossible packing before any file is written
+  }
+  catch (const dem::PackingError &e)
+  {
+    deck.fail(key_of(e.setting), std::string(e.what()));
+  }
+
+  std::unique_ptr<RunDirectory> dir;
+  if (!options.out_dir.empty())
+    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, deck.integer("sample/seed"));
+  std::vector<std::string> log;
+  const auto say = [&](const std::string &line) {
+    log.push_back(line);
+    if (options.progress)
+      std::cerr << "prepare " << deck.name() << ": " << line << "\n";
+  };
+
+  PrepareResult result;
+  const auto start = std::chrono::steady_clock::now();
+  dem::PreparedSample prepared;
+  try
+  {
+    prepared = dem::prepare_sample(settings, say);
+  }
+  catch (const dem::NumericalFault &f)
+  {
+    record_fault(result.status, f);
+  }
+  result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json summary = {{"kind", "prepare"}, {"title", deck.text("title")}, {"log", log}};
+  if (result.status.fault)
+  {
+    summary["status"] = result.status.to_json();
+    if (dir)
+      dir->write_summary(summary);
+    return result;
+  }
+  result.status.steps = prepared.sim->steps();
+  SampleFile &sample = result.sample;
+  sample.snapshot = prepared.sim->snapshot();
+  sample.cell = std::move(prepared.cell);
+  sample.contact_law = std::string(prepared.sim->model().name());
+  sample.seed = deck.integer("sample/seed");
+  sample.title = deck.text("title");
+  sample.preparation = report_json(prepared.report);
+  sample.provenance = provenance(threads, sample.seed, deck.resolved());
+  summary["status"] = result.status.to_json();
+  summary["preparation"] = sample.preparation;
+  summary["sample_file"] = "sample.json";
+  if (dir)
+  {
+    write_sample(dir->path("sample.json"), sample);
+    if (deck.flag("output/paraview"))
+      ParaviewWriter(dir->path("paraview")).write_frame(*prepared.sim, prepared.sim->time());
+    dir->write_summary(summary);
+  }
+  return result;
+}
+
+SampleFile load_or_prepare_sample(const std::string &path, const std::string &cache_dir)
+{
+  const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
+  if (!is_deck)
+    return read_sample(path);
+  const Deck deck = Deck::from_file(path);
+  if (deck.kind() != "prepare")
+    throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
+  // Keyed by the resolved deck and the procedure's revision, so that a
+  // changed procedure never serves a stale sample.
+  const std::string key = deck.resolved() + "\npreparation revision " + std::to_string(dem::preparation_revision);
+  const std::string dir = cache_dir + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
+  if (std::filesystem::exists(dir + "/sample.json"))
+    return read_sample(dir + "/sample.json");
+  PrepareResult r = run_prepare(deck, {dir, 0, true});
+  if (r.status.fault)
+    throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());
+  return std::move(r.sample);
+}
+} // namespace verify

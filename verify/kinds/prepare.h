@@ -1,0 +1,32 @@
+// Prepare decks: numerical sample preparation (thesis ch. 5, dem/prep_packing.h).
+//
+// A prepare deck says how many balls (or which cell), their properties, the
+// preparation targets and the bonds; running it writes the sample file
+// (sample_file.h) with the preparation report, a ParaView view of the
+// sample, summary.json and deck.prm.  Uniaxial decks load the sample file,
+// or name the prepare deck itself: the sample is then prepared once and
+// cached under runs/samples/ by the deck's hash.
+#pragma once
+
+#include "verify/decks/deck.h"
+#include "verify/run/run.h"
+#include "verify/io/sample_file.h"
+
+namespace verify
+{
+void declare_prepare(DeckSchema &s);
+
+struct PrepareResult
+{
+  SampleFile sample;
+  RunStatus status;
+};
+
+/// Prepares the sample of a prepare deck; with options.out_dir set, writes
+/// the run directory (sample.json among it).
+PrepareResult run_prepare(const Deck &deck, const RunOptions &options);
+
+/// Reads a sample: a .json sample file, or a prepare deck (.prm) whose
+/// sample is prepared on first use and cached under cache_dir.
+SampleFile load_or_prepare_sample(const std::string &path, const std::string &cache_dir);
+} // namespace verify

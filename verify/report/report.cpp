@@ -1,0 +1,144 @@
+#include "verify/report/report.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace verify
+{
+namespace
+{
+std::string sci(double v)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+} // namespace
+
+std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose)
+{
+  std::vector<CheckRecord> out;
+  for (const Check &c : check_registry())
+  {
+    if (!only.empty() && std::string(c.id).find(only) == std::string::npos &&
+        std::string(c.title).find(only) == std::string::npos)
+      continue;
+    CheckRecord r;
+    r.check = &c;
+    const auto start = std::chrono::steady_clock::now();
+    try
+    {
+      r.outcome = c.run(ctx);
+    }
+    catch (const std::exception &e)
+    {
+      r.error = e.what();
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (verbose)
+      std::cerr << (r.pass() ? "PASS " : "FAIL ") << c.id << "  " << c.title << "  (" << sci(r.seconds) << " s)"
+                << (r.error.empty() ? "" : "  error: " + r.error) << "\n";
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohmann::json &provenance)
+{
+  nlohmann::json checks = nlohmann::json::array();
+  std::size_t failed = 0;
+  for (const CheckRecord &r : records)
+  {
+    nlohmann::json metrics = nlohmann::json::array();
+    for (const Metric &m : r.outcome.metrics)
+      metrics.push_back({{"metric", m.name},
+                         {"value", m.value},
+                         {"tolerance", m.tolerance},
+                         {"comparison", m.at_least ? ">=" : "<="},
+                         {"tolerance_reason", m.reason},
+                         {"pass", m.pass}});
+    nlohmann::json tables = nlohmann::json::array();
+    for (const ConvergenceTable &t : r.outcome.tables)
+    {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const ConvergenceRow &row : t.rows)
+        rows.push_back({{"h", row.h}, {"error", row.error}, {"observed_order", row.order}});
+      tables.push_back({{"title", t.title}, {"h", t.h_name}, {"error", t.error_name},
+                        {"expected_order", t.expected_order}, {"levels", rows}});
+    }
+    failed += r.pass() ? 0 : 1;
+    checks.push_back({{"id", r.check->id},
+                      {"title", r.check->title},
+                      {"requirement", r.check->requirement},
+                      {"category", category_name(r.check->category)},
+                      {"tolerance_class", std::string(1, r.check->tolerance_class)},
+                      {"reference", r.check->reference},
+                      {"metrics", metrics},
+                      {"convergence", tables},
+                      {"notes", r.outcome.notes},
+                      {"error", r.error},
+                      {"runtime_s", r.seconds},
+                      {"pass", r.pass()}});
+  }
+  return {{"checks", checks},
+          {"summary", {{"total", records.size()}, {"failed", failed}, {"passed", records.size() - failed}}},
+          {"provenance", provenance}};
+}
+
+std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance)
+{
+  std::ostringstream o;
+  std::size_t failed = 0;
+  for (const CheckRecord &r : records)
+    failed += r.pass() ? 0 : 1;
+  o << "# demvv verification report\n\n"
+    << records.size() - failed << " of " << records.size() << " checks pass"
+    << (failed ? " — **" + std::to_string(failed) + " FAIL**" : "") << ".\n\n"
+    << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
+       "verification* (how accurate is this solution), *calibration* (parameters fitted to data) and "
+       "*validation* (is it the right equation). Tolerance classes (VERIFICATION.md): A algebraic, "
+       "B time-discretised, C event, D statistical.\n\n";
+  o << "## Requirements\n\n| id | requirement | class | category | reference | verdict | runtime [s] |\n"
+    << "|---|---|---|---|---|---|---|\n";
+  for (const CheckRecord &r : records)
+    o << "| " << r.check->id << " | " << r.check->requirement << " | " << r.check->tolerance_class << " | "
+      << category_name(r.check->category) << " | " << r.check->reference << " | "
+      << (r.pass() ? "PASS" : "**FAIL**") << " | " << sci(r.seconds) << " |\n";
+  o << "\n## Metrics\n\n| id | metric | value | tolerance | verdict | why this tolerance |\n"
+    << "|---|---|---|---|---|---|\n";
+  for (const CheckRecord &r : records)
+  {
+    if (!r.error.empty())
+      o << "| " << r.check->id << " | (the check stopped: " << r.error << ") | | | **FAIL** | |\n";
+    for (const Metric &m : r.outcome.metrics)
+      o << "| " << r.check->id << " | " << m.name << " | " << sci(m.value) << " | " << (m.at_least ? ">= " : "<= ")
+        << sci(m.tolerance) << " | " << (m.pass ? "PASS" : "**FAIL**") << " | " << m.reason << " |\n";
+  }
+  bool any_table = false;
+  for (const CheckRecord &r : records)
+    for (const ConvergenceTable &t : r.outcome.tables)
+    {
+      if (!any_table)
+        o << "\n## Convergence studies\n";
+      any_table = true;
+      o << "\n### " << r.check->id << ": " << t.title << " (expected order " << t.expected_order << ")\n\n"
+        << "| level | " << t.h_name << " | " << t.error_name << " | observed order |\n|---|---|---|---|\n";
+      for (std::size_t k = 0; k < t.rows.size(); ++k)
+        o << "| " << k << " | " << sci(t.rows[k].h) << " | " << sci(t.rows[k].error) << " | "
+          << (k ? sci(t.rows[k].order) : "-") << " |\n";
+    }
+  bool any_note = false;
+  for (const CheckRecord &r : records)
+    for (const std::string &n : r.outcome.notes)
+    {
+      if (!any_note)
+        o << "\n## Notes\n\n";
+      any_note = true;
+      o << "- **" << r.check->id << "**: " << n << "\n";
+    }
+  o << "\n## Provenance\n\n```json\n" << provenance.dump(2) << "\n```\n";
+  return o.str();
+}
+} // namespace verify

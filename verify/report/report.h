@@ -1,0 +1,31 @@
+// The verification report: report.md for people, report.json for scripts.
+//
+// report.md has a requirements table (id, requirement, class, V&V category,
+// reference, metric, tolerance, value, verdict, runtime), a convergence
+// table for every order study, the notes of each check, and provenance.
+#pragma once
+
+#include "verify/checks/check.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+struct CheckRecord
+{
+  const Check *check = nullptr;
+  CheckOutcome outcome;
+  double seconds = 0;
+  std::string error; ///< set when the check threw instead of returning
+  bool pass() const { return error.empty() && outcome.pass(); }
+};
+
+nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
+std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
+
+/// Runs the checks whose id or title contains `only` (all if empty).
+std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose);
+} // namespace verify

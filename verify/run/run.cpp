@@ -1,0 +1,91 @@
+#include "verify/run/run.h"
+
+#include "verify/io/output.h"
+#include "verify/io/paraview.h"
+
+#include <omp.h>
+
+#include <sstream>
+
+namespace verify
+{
+nlohmann::json RunStatus::to_json() const
+{
+  nlohmann::json j = {{"state", fault ? "numerical fault" : "completed"},
+                      {"steps", steps},
+                      {"wall_seconds", wall_seconds}};
+  if (fault)
+    j["fault"] = {{"step", step}, {"time_s", time}, {"particle", particle}, {"message", message}};
+  return j;
+}
+
+std::string RunStatus::diagnostic() const
+{
+  std::ostringstream o;
+  o << "numerical fault at step " << step << ", time " << time << " s";
+  if (particle >= 0)
+    o << ", particle " << particle;
+  o << ": " << message;
+  return o.str();
+}
+
+void record_fault(RunStatus &status, const dem::NumericalFault &fault)
+{
+  status.fault = true;
+  status.step = fault.step;
+  status.time = fault.time;
+  status.particle = fault.particle;
+  status.message = fault.what();
+}
+
+RunDirectory::RunDirectory(const std::string &dir, const Deck &deck, int threads, long long seed)
+  : dir_(dir)
+{
+  make_directories(dir);
+  const std::string resolved = deck.resolved();
+  provenance_ = provenance(threads, seed, resolved);
+  provenance_["deck_file"] = deck.path();
+  provenance_["resolved_deck"] = "deck.prm";
+  write_atomically(path("deck.prm"), resolved);
+  write_summary({{"status", {{"state", "running"}}}});
+}
+
+void RunDirectory::write_summary(nlohmann::json summary) const
+{
+  summary["provenance"] = provenance_;
+  write_atomically(path("summary.json"), summary.dump(2) + "\n");
+}
+
+RunFiles::RunFiles(const RunOptions &options, const Deck &deck, int threads, long long seed,
+                   const std::string &convention, bool paraview)
+{
+  if (options.out_dir.empty())
+    return;
+  dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed);
+  breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
+                                        std::vector<std::string>{"time_s", "first", "second", "mode"});
+  if (paraview)
+    paraview_ = std::make_unique<ParaviewWriter>(dir_->path("paraview"));
+}
+
+RunFiles::~RunFiles() = default;
+
+void RunFiles::drain_breaks(dem::Simulation &sim)
+{
+  const std::vector<dem::BondBreak> breaks = sim.take_breaks();
+  if (breaks.empty())
+    return;
+  if (breaks_)
+    for (const dem::BondBreak &b : breaks)
+      breaks_->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
+  if (paraview_)
+    paraview_->add_breaks(sim, breaks);
+}
+
+int apply_threads(const RunOptions &options)
+{
+  if (options.threads > 0)
+    omp_set_num_threads(options.threads);
+  return omp_get_max_threads();
+}
+} // namespace verify

@@ -1,0 +1,87 @@
+// What every run shares: options, status, the run directory.
+//
+// A run directory holds deck.prm (the resolved deck, written first),
+// summary.json (written at the start with status "running", rewritten
+// atomically at the end or at a fault) and the series files, which grow a
+// complete row at a time.  A run stopped by a numerical fault keeps all of
+// them valid and records the diagnostic (step, time, particle) in
+// summary.json; the command then exits with code 3.
+#pragma once
+
+#include "verify/decks/deck.h"
+
+#include "dem/simulation.h"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+
+namespace verify
+{
+struct RunOptions
+{
+  std::string out_dir;   ///< empty: keep results in memory only
+  int threads = 0;       ///< OpenMP threads (0: leave the default)
+  bool progress = true;  ///< show progress on a terminal
+};
+
+struct RunStatus
+{
+  bool fault = false;
+  long step = 0;           ///< fault step (or steps run)
+  double time = 0;         ///< s
+  dem::Index particle = -1;
+  std::string message;
+  double wall_seconds = 0;
+  long steps = 0;
+
+  nlohmann::json to_json() const;
+  /// One-line diagnostic for stderr.
+  std::string diagnostic() const;
+};
+
+class RunDirectory
+{
+public:
+  /// Creates the directory, writes deck.prm and a "running" summary.json.
+  RunDirectory(const std::string &dir, const Deck &deck, int threads, long long seed);
+  std::string path(const std::string &file) const { return dir_ + "/" + file; }
+  /// Rewrites summary.json atomically; provenance is added.
+  void write_summary(nlohmann::json summary) const;
+
+private:
+  std::string dir_;
+  nlohmann::json provenance_;
+};
+
+class ParaviewWriter;
+class CsvSeries;
+
+/// The files a DEM run writes besides its series: the run directory (when
+/// an output directory is given), the bond-break log and, on request,
+/// ParaView frames.  Without an output directory everything is a no-op.
+class RunFiles
+{
+public:
+  RunFiles(const RunOptions &options, const Deck &deck, int threads, long long seed,
+           const std::string &convention, bool paraview);
+  ~RunFiles();
+  RunDirectory *directory() { return dir_.get(); }
+  ParaviewWriter *paraview() { return paraview_.get(); }
+  /// Takes the simulation's new bond breaks into bond_breaks.csv and the
+  /// ParaView break log.
+  void drain_breaks(dem::Simulation &sim);
+
+private:
+  std::unique_ptr<RunDirectory> dir_;
+  std::unique_ptr<CsvSeries> breaks_;
+  std::unique_ptr<ParaviewWriter> paraview_;
+};
+
+/// Records a fault into a status (from a NumericalFault).
+void record_fault(RunStatus &status, const dem::NumericalFault &fault);
+
+/// Threads actually used by OpenMP after applying options.threads.
+int apply_threads(const RunOptions &options);
+} // namespace verify
