@@ -18,7 +18,7 @@
 // Displacement under a constant force F applied at t = 0 (creep, eq. 2.15):
 //   u(t) = F [ 1/K0 + t/C_inf + (1 - e^{-t/tau}) / K1 ],  tau = C1/K1.
 //
-// These are the references the contact law (issue 4), the SUNDIALS ODE and
+// These are the references the Burger's contact law, the SUNDIALS ODE and
 // the continuum cylinder are verified against.
 #pragma once
 

@@ -224,49 +224,81 @@ void Preparation::grow()
                  s_.growth_stages * s_.growth_cycles, true));
 }
 
+namespace
+{
+/// The equilibrium stage as a step protocol: at every force time the servo
+/// (if on) moves the cell walls; every 100 cycles the stage takes stock.
+/// Servo phase: the wall stresses must be within 1 % of the target at five
+/// checks in a row.  Settling phase: the stage ends, before integrating,
+/// once the unbalanced-force ratio is below `ratio`.
+class EquilibriumStage final : public StepHooks
+{
+public:
+  EquilibriumStage(const Specimen &cell, double servo_stress, bool servo, double ratio,
+                   const std::function<void(const CellStress &, long)> &report)
+    : cell_(cell), servo_(servo), ratio_(ratio), report_(report)
+  {
+    settings_.target_stress = servo_stress;
+  }
+
+  void start_settling() { settling_ = true, cycles_in_phase_ = 0; }
+  bool servo_on_target() const { return on_target_ >= 5; }
+  bool settled() const { return settled_; }
+
+  ForceTimeAction at_force_time(Simulation &sim) override
+  {
+    if (servo_)
+      servo_cell(sim, cell_, settings_);
+    const bool stock = cycles_in_phase_ % 100 == 0 && cycles_in_phase_ > 0;
+    ++cycles_in_phase_;
+    if (!stock)
+      return {};
+    if (settling_)
+    {
+      settled_ = unbalanced_force_ratio(sim.particles(), sim.contacts()) < ratio_;
+      return {false, settled_};
+    }
+    const CellStress cs = cell_stress(sim, cell_);
+    on_target_ = cs.largest_error(settings_.target_stress) < 0.01 * settings_.target_stress ? on_target_ + 1 : 0;
+    report_(cs, cycles_in_phase_ - 1);
+    return {};
+  }
+
+private:
+  const Specimen &cell_;
+  ServoSettings settings_;
+  bool servo_;
+  double ratio_;
+  const std::function<void(const CellStress &, long)> &report_;
+  bool settling_ = false, settled_ = false;
+  long cycles_in_phase_ = 0;
+  int on_target_ = 0;
+};
+} // namespace
+
 StageReport Preparation::equilibrate(const std::string &name, bool servo, double ratio)
 {
   // A servo stage first brings the wall stresses within 1 % of the target
   // for five checks in a row, then settles to the equilibrium ratio with the
   // servo still on (near the target the walls hardly move): a frictionless
   // packing held by fixed walls can creep, rearrange and unjam.
-  ServoSettings servo_settings;
-  servo_settings.target_stress = s_.servo_stress;
+  const std::function<void(const CellStress &, long)> progress = [&](const CellStress &cs, long cycles) {
+    if (cycles % 20000 == 0)
+      say(name + ": cycle " + std::to_string(cycles) + ", wall stresses bottom " + fmt(cs.bottom) + ", top " +
+          fmt(cs.top) + ", lateral " + fmt(cs.lateral) + " Pa, solid fraction " + fmt(solid_fraction()));
+  };
+  EquilibriumStage stage(cell_, s_.servo_stress, servo, ratio, progress);
   long cycles = 0;
-  bool converged = false;
-  int on_target = 0;
-  while (servo && cycles < s_.max_cycles && on_target < 5)
+  while (servo && cycles < s_.max_cycles && !stage.servo_on_target())
   {
-    sim_->compute_forces();
-    servo_cell(*sim_, cell_, servo_settings);
-    if (cycles % 100 == 0 && cycles > 0)
-    {
-      const CellStress cs = cell_stress(*sim_, cell_);
-      on_target = cs.largest_error(s_.servo_stress) < 0.01 * s_.servo_stress ? on_target + 1 : 0;
-      if (cycles % 20000 == 0)
-        say(name + ": cycle " + std::to_string(cycles) + ", wall stresses bottom " + fmt(cs.bottom) + ", top " +
-            fmt(cs.top) + ", lateral " + fmt(cs.lateral) + " Pa, solid fraction " + fmt(solid_fraction()));
-    }
-
-    sim_->integrate();
+    sim_->step(stage);
     ++cycles;
   }
   const long servo_cycles = cycles;
-  while (cycles < servo_cycles + s_.max_cycles)
-  {
-    sim_->compute_forces();
-    if (servo)
-      servo_cell(*sim_, cell_, servo_settings);
-
-    if ((cycles - servo_cycles) % 100 == 0 && cycles > servo_cycles &&
-        unbalanced_force_ratio(sim_->particles(), sim_->contacts()) < ratio)
-    {
-      converged = !servo || on_target >= 5;
-      break;
-    }
-    sim_->integrate();
+  stage.start_settling();
+  while (cycles < servo_cycles + s_.max_cycles && sim_->step(stage))
     ++cycles;
-  }
+  const bool converged = stage.settled() && (!servo || stage.servo_on_target());
   stop_walls(*sim_, cell_);
   sim_->compute_forces();
   StageReport st = measure(name, cycles, converged);

@@ -23,7 +23,7 @@ struct UniaxialSettings
   bool both_platens = false;
 };
 
-class UniaxialCompression
+class UniaxialCompression : public StepHooks
 {
 public:
   /// bottom and top are plane walls facing each other along z; area is the
@@ -33,6 +33,8 @@ public:
 
   /// Sets the platen velocities for the coming step.
   void drive(Simulation &sim) const;
+  /// The step hook: platens are driven before the forces of every step.
+  void before_forces(Simulation &sim) override { drive(sim); }
   bool finished(const Simulation &sim) const { return axial_strain(sim) >= settings_.final_strain; }
 
   double initial_height() const { return height0_; }

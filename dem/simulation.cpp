@@ -82,10 +82,28 @@ Snapshot Simulation::snapshot() const
   return s;
 }
 
+void Simulation::restore(Snapshot snapshot)
+{
+  std::unique_ptr<ContactModel> model = std::move(model_);
+  *this = Simulation(std::move(snapshot), std::move(model), settings_);
+}
+
 void Simulation::step()
 {
   compute_forces();
   integrate(false);
+}
+
+bool Simulation::step(StepHooks &hooks)
+{
+  hooks.before_forces(*this);
+  compute_forces();
+  const ForceTimeAction action = hooks.at_force_time(*this);
+  if (action.stop)
+    return false;
+  integrate(action.measure_kinetic);
+  hooks.after_integration(*this);
+  return true;
 }
 
 void Simulation::refresh_contacts()

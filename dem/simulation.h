@@ -95,6 +95,33 @@ struct Snapshot
   SimulationClock clock;
 };
 
+class Simulation;
+
+/// What a protocol may do at a step's force time (see StepHooks).
+struct ForceTimeAction
+{
+  bool measure_kinetic = false; ///< evaluate the kinetic energy at the force time (energy())
+  bool stop = false;            ///< end here: the step is not integrated
+};
+
+/// The named points of a step where a protocol acts (a platen ramp, a
+/// servo, a measurement), so that no driver splits the step by hand:
+///
+///   before_forces(sim)   walls are given their motion for this step;
+///   compute_forces()     positions, forces and walls all at time t;
+///   at_force_time(sim)   measure, or act on the forces (a servo reads the
+///                        wall forces and sets the wall velocities);
+///   integrate()          unless at_force_time asked to stop;
+///   after_integration(sim)
+class StepHooks
+{
+public:
+  virtual ~StepHooks() = default;
+  virtual void before_forces(Simulation & /*sim*/) {}
+  virtual ForceTimeAction at_force_time(Simulation & /*sim*/) { return {}; }
+  virtual void after_integration(Simulation & /*sim*/) {}
+};
+
 class Simulation
 {
 public:
@@ -105,9 +132,15 @@ public:
 
   /// The state a run can be continued from, exactly.
   Snapshot snapshot() const;
+  /// Continues from a saved state with this simulation's law and settings,
+  /// exactly as if the run that saved it had never stopped.
+  void restore(Snapshot snapshot);
 
   /// One full step.  Equivalent to compute_forces(); integrate(false).
   void step();
+  /// One step with a protocol's hooks (StepHooks).  Returns false when a
+  /// hook stopped the step at its force time (not integrated).
+  bool step(StepHooks &hooks);
   void compute_forces();
   /// Advances by the step chosen in compute_forces().  With measure_kinetic
   /// the kinetic energy at the force time is evaluated (energy()).

@@ -3,7 +3,7 @@
 // Axis z; bottom platen at z = 0 facing up, top platen at z = height facing
 // down, and (optionally) the lateral cylinder of the sample's diameter.
 // Every test protocol starts from a Specimen, whichever way its balls were
-// made (a lattice here; a prepared random packing with issue 3).
+// made (a regular lattice, or a prepared random packing, prep_packing.h).
 #pragma once
 
 #include "dem/particles.h"

@@ -2,6 +2,7 @@
 
 #include "verify/decks/deck.h"
 #include "verify/kinds/prepare.h"
+#include "verify/kinds/uniaxial.h"
 #include "verify/run/run.h"
 #include "verify/io/sample_file.h"
 
@@ -44,12 +45,10 @@ int command_bench(const BenchOptions &o)
   std::string source;
   if (!o.sample.empty())
   {
-    SampleFile file = load_or_prepare_sample(o.sample, "runs/samples");
-    apply_test_properties(file, ball, platen);
-    sim_ptr = std::make_unique<dem::Simulation>(std::move(file.snapshot), std::move(model), settings);
-    cell = std::move(file.cell);
-    if (cell.lateral >= 0)
-      sim_ptr->set_wall_enabled(cell.lateral, false);
+    TestSample sample =
+      open_test_sample(load_or_prepare_sample(o.sample, "runs/samples"), ball, platen, std::move(model), settings);
+    sim_ptr = std::move(sample.sim);
+    cell = std::move(sample.cell);
     source = "prepared sample";
   }
   else
@@ -80,14 +79,11 @@ int command_bench(const BenchOptions &o)
   dem::UniaxialSettings load;
   load.platen_speed = 0.01;
   load.final_strain = 1;
-  const dem::UniaxialCompression test(sim, bottom, top, area, load);
+  dem::UniaxialCompression test(sim, bottom, top, area, load);
 
   const long warmup = std::min<long>(200, o.steps);
   for (long k = 0; k < warmup; ++k)
-  {
-    test.drive(sim);
-    sim.step();
-  }
+    sim.step(test);
   // The machine is shared: time `repeat` runs and keep the fastest, the
   // least disturbed measure of what the code can do.
   double seconds = std::numeric_limits<double>::infinity();
@@ -95,10 +91,7 @@ int command_bench(const BenchOptions &o)
   {
     const auto start = std::chrono::steady_clock::now();
     for (long k = 0; k < o.steps; ++k)
-    {
-      test.drive(sim);
-      sim.step();
-    }
+      sim.step(test);
     seconds = std::min(seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   std::size_t touching = 0;

@@ -1,55 +1,33 @@
 #include "verify/cli/commands.h"
 
 #include "verify/checks/check.h"
-#include "verify/kinds/continuum_cylinder.h"
-#include "verify/kinds/continuum_mms.h"
-#include "verify/kinds/continuum_ode.h"
 #include "verify/decks/deck.h"
-#include "verify/kinds/prepare.h"
 #include "verify/io/output.h"
 #include "verify/report/report.h"
-#include "verify/kinds/scene.h"
-#include "verify/kinds/uniaxial.h"
+#include "verify/run/dem_driver.h"
 
+#include <csignal>
 #include <iostream>
 
 namespace verify
 {
 namespace
 {
-int report(const std::string &out_dir, const RunStatus &status)
+const char *signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+/// The one line a finished run leaves on stderr.
+void tell(const std::string &deck_path, const std::string &out_dir, const RunStatus &status)
 {
   if (status.fault)
-  {
     std::cerr << "demvv: " << status.diagnostic() << "; outputs up to that point are in " << out_dir << "\n";
-    return 3;
-  }
-  std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
-            << out_dir << "\n";
-  return 0;
+  else if (status.interrupted_by || status.paused)
+    std::cerr << "demvv: " << (status.paused ? "paused" : "interrupted by ") << (status.paused ? "" : signal_name(status.interrupted_by))
+              << " after step " << status.steps << "; outputs up to that point and a checkpoint are in " << out_dir
+              << "; continue with: demvv run " << deck_path << " --resume " << out_dir << "\n";
+  else
+    std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
+              << out_dir << "\n";
 }
-
-int run_scene_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_scene(deck, o).status); }
-int run_uniaxial_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_uniaxial(deck, o).status); }
-int run_prepare_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_prepare(deck, o).status); }
-int run_ode_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_burgers_ode(deck, o).status); }
-int run_cylinder_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_cylinder(deck, o).status); }
-int run_study_deck(const Deck &deck, const RunOptions &o) { return report(o.out_dir, run_mms_deck(deck, o).status); }
-
-struct Runner
-{
-  const char *kind;
-  int (*run)(const Deck &, const RunOptions &);
-};
-
-const Runner runners[] = {
-  {"scene", &run_scene_deck},
-  {"uniaxial", &run_uniaxial_deck},
-  {"prepare", &run_prepare_deck},
-  {"burgers_ode", &run_ode_deck},
-  {"cylinder", &run_cylinder_deck},
-  {"mms", &run_study_deck},
-};
 } // namespace
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
@@ -58,10 +36,12 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   RunOptions o = options;
   if (o.out_dir.empty())
     o.out_dir = "runs/" + deck.name();
-  for (const Runner &r : runners)
-    if (deck.kind() == r.kind)
-      return r.run(deck, o);
-  throw DeckError(deck_path + ": decks of kind '" + deck.kind() + "' cannot be run yet");
+  const DeckKind *kind = find_deck_kind(deck.kind());
+  if (o.resume)
+    check_resumable(o.out_dir, deck);
+  const RunStatus status = kind->run(deck, o);
+  tell(deck_path, o.out_dir, status);
+  return status.exit_code();
 }
 
 int command_defaults(const std::string &kind)

@@ -1,12 +1,13 @@
-// demvv: the command-line entry point (SPEC §10).
+// demvv: the command-line entry point.
 //
-//   demvv run DECK [--out DIR] [--set SECTION/KEY=VALUE]... [--threads N]
+//   demvv run DECK [--out DIR] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
 //   demvv defaults KIND
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
 //   demvv bench [--particles N] [--steps N] [--threads N]
 //
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
-// usage; 3 the simulation stopped on a numerical fault.
+// usage; 3 the simulation stopped on a numerical fault; 130 / 143 the run
+// was interrupted by SIGINT / SIGTERM (outputs kept, checkpoint written).
 #include "verify/cli/bench.h"
 #include "verify/cli/commands.h"
 #include "verify/decks/deck.h"
@@ -24,15 +25,33 @@ int main(int argc, char **argv)
   std::vector<std::string> overrides;
   int threads = 0;
 
+  std::string kinds_help = "Deck kinds:";
+  for (const verify::DeckKind &k : verify::deck_kinds())
+    kinds_help += "\n  " + std::string(k.name) + ": " + std::string(k.summary);
+  app.footer(kinds_help);
+
+  bool quiet = false;
+  std::string resume_dir;
   auto *run = app.add_subcommand("run", "Run a deck and write its run directory");
   run->add_option("DECK", deck_path, "Deck file (.prm or .json)")->required();
   run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>)");
   run->add_option("--set", overrides, "Override a deck entry: SECTION/KEY=VALUE (repeatable)");
   run->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
     ->check(CLI::Range(1, 1024));
+  run->add_flag("--quiet", quiet, "No progress line (it is shown only when standard output is a terminal)");
+  run->add_option("--resume", resume_dir,
+                  "Continue the interrupted run in RUN_DIR from its checkpoint, bit for bit; the deck and --set "
+                  "values must be those it started with");
+  long pause_after = 0;
+  run->add_option("--pause-after", pause_after,
+                  "Stop after this many steps as an interruption would (outputs flushed, checkpoint written, "
+                  "exit 0), e.g. to fit a long run into batch-queue jobs; continue with --resume")
+    ->check(CLI::Range(1L, 1000000000000L));
+  run->footer(kinds_help);
 
   auto *defaults = app.add_subcommand("defaults", "Print a complete, documented deck of a kind");
   defaults->add_option("KIND", kind, "Deck kind")->required();
+  defaults->footer(kinds_help);
 
   bool quick = false, full = false;
   std::string only, cases_dir;
@@ -78,7 +97,14 @@ int main(int argc, char **argv)
   try
   {
     if (run->parsed())
-      return verify::command_run(deck_path, overrides, {out_dir, threads, true});
+    {
+      if (!resume_dir.empty() && !out_dir.empty() && out_dir != resume_dir)
+        throw verify::DeckError("--resume '" + resume_dir + "' and --out '" + out_dir +
+                                "': a resumed run continues in its own directory: expected no --out");
+      return verify::command_run(deck_path, overrides,
+                                 {resume_dir.empty() ? out_dir : resume_dir, threads, !quiet, !resume_dir.empty(),
+                                  pause_after});
+    }
     if (defaults->parsed())
       return verify::command_defaults(kind);
     if (bench_cmd->parsed())

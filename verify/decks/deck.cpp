@@ -39,16 +39,6 @@ std::vector<std::string> split(const std::string &s, char sep)
   return out;
 }
 
-std::string format_number(double v)
-{
-  if (std::isinf(v))
-    return v > 0 ? "inf" : "-inf";
-  std::ostringstream o;
-  o.precision(12);
-  o << v;
-  return o.str();
-}
-
 /// Levenshtein distance, for "did you mean" hints.
 std::size_t edit_distance(const std::string &a, const std::string &b)
 {
@@ -76,6 +66,16 @@ struct Origin
 };
 } // namespace
 
+std::string format_number(double v)
+{
+  if (std::isinf(v))
+    return v > 0 ? "inf" : "-inf";
+  std::ostringstream o;
+  o.precision(12);
+  o << v;
+  return o.str();
+}
+
 struct Deck::Impl final : DeckSchema
 {
   struct Entry
@@ -87,8 +87,19 @@ struct Deck::Impl final : DeckSchema
     double min = 0;
   };
 
+  /// A repeated section: where it may appear and how an instance is declared.
+  struct Repeated
+  {
+    std::string parent; ///< "walls" (sections joined by '/'; "" at the top)
+    std::string keyword;
+    void (*declare)(DeckSchema &);
+    std::string help;
+    std::vector<std::string> instances; ///< section names, in order of appearance
+  };
+
   dealii::ParameterHandler prm;
   std::map<std::string, Entry> entries;
+  std::vector<Repeated> repeats;
   std::vector<std::string> stack;
   std::string kind;
   std::string path;
@@ -176,6 +187,47 @@ struct Deck::Impl final : DeckSchema
         help + " [" + unit + "]");
   }
 
+  void repeated(const std::string &keyword, void (*declare)(DeckSchema &), const std::string &help) override
+  {
+    std::string parent;
+    for (const auto &s : stack)
+      parent += (parent.empty() ? "" : "/") + s;
+    repeats.push_back({parent, keyword, declare, help, {}});
+  }
+
+  /// Declares the instance of a repeated section that `key` lies in, if
+  /// any and not yet declared; true if it did.
+  bool declare_instance(const std::string &key)
+  {
+    const auto parts = split(key, '/');
+    std::string parent;
+    for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+    {
+      const std::string &section = parts[k];
+      for (Repeated &r : repeats)
+      {
+        const bool named = section == r.keyword || section.rfind(r.keyword + " ", 0) == 0;
+        if (r.parent != parent || !named ||
+            std::find(r.instances.begin(), r.instances.end(), section) != r.instances.end())
+          continue;
+        const std::vector<std::string> saved = stack;
+        stack.clear();
+        for (std::size_t j = 0; j < k; ++j)
+          enter(parts[j]);
+        enter(section);
+        r.declare(*this);
+        leave();
+        for (std::size_t j = 0; j < k; ++j)
+          leave();
+        stack = saved;
+        r.instances.push_back(section);
+        return true;
+      }
+      parent += (parent.empty() ? "" : "/") + section;
+    }
+    return false;
+  }
+
   // --- assignment --------------------------------------------------------
   [[noreturn]] void reject(const Origin &o, const std::string &message) const
   {
@@ -200,6 +252,8 @@ struct Deck::Impl final : DeckSchema
 
   void assign(const std::string &key, const std::string &raw, const Origin &o)
   {
+    if (entries.find(key) == entries.end())
+      declare_instance(key);
     const auto it = entries.find(key);
     if (it == entries.end())
       reject(o, "unknown key '" + key + "'" + suggestion(key) + "; `demvv defaults " + kind +
@@ -448,6 +502,22 @@ std::array<double, 3> Deck::vector3(const std::string &key) const
   return {{v.at(0), v.at(1), v.at(2)}};
 }
 
+DeckRecord::DeckRecord(const Deck &deck) : path(deck.path()), name(deck.name()), resolved(deck.resolved()) {}
+
+void DeckRecord::fail(const std::string &key, const std::string &value, const std::string &expected) const
+{
+  throw DeckError((path.empty() ? std::string("deck") : path) + ": key '" + key + "' has value '" + value +
+                  "': " + expected);
+}
+
+std::vector<std::string> Deck::instances(const std::string &section, const std::string &keyword) const
+{
+  for (const Impl::Repeated &r : impl_->repeats)
+    if (r.parent == section && r.keyword == keyword)
+      return r.instances;
+  throw std::logic_error("demvv bug: no repeated section '" + keyword + "' in '" + section + "'");
+}
+
 std::string Deck::file(const std::string &key) const
 {
   const std::string f = text(key);
@@ -480,6 +550,24 @@ std::string Deck::documented() const
   impl_->prm.print_parameters(out, static_cast<dealii::ParameterHandler::OutputStyle>(
                                      dealii::ParameterHandler::PRM |
                                      dealii::ParameterHandler::KeepDeclarationOrder));
+  for (const Impl::Repeated &r : impl_->repeats)
+  {
+    // One instance of each repeated section, commented out, as an example.
+    Impl example;
+    example.enter(r.keyword + " NAME");
+    r.declare(example);
+    example.leave();
+    std::ostringstream text;
+    example.prm.print_parameters(text, static_cast<dealii::ParameterHandler::OutputStyle>(
+                                         dealii::ParameterHandler::PRM |
+                                         dealii::ParameterHandler::KeepDeclarationOrder));
+    out << "\n# Repeatable section '" << r.keyword << "'" << (r.parent.empty() ? "" : " inside '" + r.parent + "'")
+        << ": " << r.help << "\n# Write it once per item, each with its own NAME, e.g.:\n";
+    std::istringstream lines(text.str());
+    std::string line;
+    while (std::getline(lines, line))
+      out << "#   " << line << "\n";
+  }
   return out.str();
 }
 } // namespace verify

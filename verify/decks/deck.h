@@ -30,6 +30,9 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// A number as decks and their errors write it (12 significant digits).
+std::string format_number(double v);
+
 /// How a kind declares its entries (implemented over deal.II in deck.cpp).
 class DeckSchema
 {
@@ -53,18 +56,50 @@ public:
   /// A comma-separated list of reals (possibly empty) of length in [min_len, max_len].
   virtual void real_list(const std::string &name, const std::string &value, unsigned min_len,
                          unsigned max_len, const std::string &unit, const std::string &help) = 0;
+  /// A section that may appear any number of times, each instance named
+  /// by the keyword and a label ('subsection plane top', 'subsection plane
+  /// 2'; the bare keyword is an instance too).  `declare` declares the
+  /// entries of one instance; instances exist only where a deck writes them.
+  virtual void repeated(const std::string &keyword, void (*declare)(DeckSchema &), const std::string &help) = 0;
 };
 
-/// One deck kind: its name, what it is for, and its schema.
+struct RunOptions;
+struct RunStatus;
+class Deck;
+
+/// One deck kind: its keyword, what it is for (one line), its schema, the
+/// parse into its typed spec (validation only: throws DeckError, runs
+/// nothing) and the run.  `demvv run`, `demvv defaults` and `--help` all
+/// read this one table.
 struct DeckKind
 {
   std::string_view name;
   std::string_view summary;
   void (*declare)(DeckSchema &);
+  void (*parse)(const Deck &);
+  RunStatus (*run)(const Deck &, const RunOptions &);
 };
 
-/// The kinds a deck may have (deck_kinds.cpp).
+/// THE table of deck kinds (verify/kinds/deck_kinds.cpp).
 const std::vector<DeckKind> &deck_kinds();
+/// The row of a kind, or nullptr.
+const DeckKind *find_deck_kind(std::string_view name);
+
+class Deck;
+
+/// What a run keeps of its deck once the deck is parsed into a spec: where
+/// it came from and its resolved text (deck.prm, provenance, resume), and a
+/// way to name a key of it in a one-line error found later in the run.
+struct DeckRecord
+{
+  std::string path;     ///< "" for a defaults deck
+  std::string name;     ///< Deck::name()
+  std::string resolved; ///< Deck::resolved()
+
+  DeckRecord() = default;
+  DeckRecord(const Deck &deck); // NOLINT: a deck is a record of itself
+  [[noreturn]] void fail(const std::string &key, const std::string &value, const std::string &expected) const;
+};
 
 class Deck
 {
@@ -98,6 +133,9 @@ public:
   std::vector<double> real_list(const std::string &key) const;
   /// A relative file name from the deck resolved against directory().
   std::string file(const std::string &key) const;
+  /// The instances of a repeated section, e.g. instances("walls", "plane")
+  /// gives {"plane 1", "plane top"}, in the order the deck first names them.
+  std::vector<std::string> instances(const std::string &section, const std::string &keyword) const;
 
   /// Throws a DeckError naming this deck, the key and its value.
   [[noreturn]] void fail(const std::string &key, const std::string &expected) const;

@@ -2,7 +2,9 @@
 
 #include "dem/rate_scaling.h"
 
+#include <algorithm>
 #include <limits>
+#include <map>
 
 namespace verify
 {
@@ -40,20 +42,33 @@ void declare_contact_law(DeckSchema &s)
   s.leave();
 }
 
-std::unique_ptr<dem::ContactModel> read_contact_law(const Deck &d, const RateScaling &rate)
+LawSpec LawSpec::parse(const Deck &d)
 {
-  dem::LawParameters p;
+  LawSpec law;
+  law.keyword = d.text("contact law/law");
   const auto element = [&](const std::string &dir) {
     const std::string k = "contact law/" + dir;
-    return dem::BurgersConstants{d.real(k + " maxwell stiffness") * rate.stiffness_factor,
-                                 d.real(k + " maxwell viscosity") * rate.viscosity_factor,
-                                 d.real(k + " kelvin stiffness") * rate.stiffness_factor,
-                                 d.real(k + " kelvin viscosity") * rate.viscosity_factor};
+    return dem::BurgersConstants{d.real(k + " maxwell stiffness"), d.real(k + " maxwell viscosity"),
+                                 d.real(k + " kelvin stiffness"), d.real(k + " kelvin viscosity")};
   };
-  p.burgers.normal = element("normal");
-  p.burgers.shear = element("shear");
-  p.burgers.compression_stiffness = d.real("contact law/compression stiffness") * rate.stiffness_factor;
-  return dem::make_contact_model(d.text("contact law/law"), p);
+  law.constants.burgers.normal = element("normal");
+  law.constants.burgers.shear = element("shear");
+  law.constants.burgers.compression_stiffness = d.real("contact law/compression stiffness");
+  return law;
+}
+
+std::unique_ptr<dem::ContactModel> LawSpec::make(const RateScaling &rate) const
+{
+  dem::LawParameters p = constants;
+  for (dem::BurgersConstants *k : {&p.burgers.normal, &p.burgers.shear})
+  {
+    k->maxwell_stiffness *= rate.stiffness_factor;
+    k->maxwell_viscosity *= rate.viscosity_factor;
+    k->kelvin_stiffness *= rate.stiffness_factor;
+    k->kelvin_viscosity *= rate.viscosity_factor;
+  }
+  p.burgers.compression_stiffness *= rate.stiffness_factor;
+  return dem::make_contact_model(keyword, p);
 }
 
 void declare_rate(DeckSchema &s)
@@ -94,24 +109,35 @@ nlohmann::json RateScaling::to_json() const
           {"stiffness_factor", stiffness_factor}};
 }
 
-RateScaling read_rate(const Deck &d, double run_rate)
+RateSpec RateSpec::parse(const Deck &d)
+{
+  RateSpec r;
+  r.deck = d.path().empty() ? "deck" : d.path();
+  r.temperature = d.real("rate/temperature");
+  r.physical_rate = d.real("rate/physical strain rate");
+  r.run_rate = d.real("rate/run strain rate");
+  r.dependence = d.text("rate/dependence");
+  return r;
+}
+
+RateScaling RateSpec::scaling(double loading_rate) const
 {
   RateScaling r;
-  r.temperature = d.real("rate/temperature");
-  r.run_rate = run_rate > 0 ? run_rate : d.real("rate/run strain rate");
-  r.physical_rate = d.real("rate/physical strain rate");
+  r.temperature = temperature;
+  r.run_rate = loading_rate > 0 ? loading_rate : run_rate;
+  r.physical_rate = physical_rate;
   if (r.physical_rate > 0 && !(r.run_rate > 0))
-    d.fail("rate/run strain rate", "expected the simulated strain rate (> 0) when a physical strain rate is given");
+    throw DeckError(deck + ": key 'rate/run strain rate' has value '" + format_number(run_rate) +
+                    "': expected the simulated strain rate (> 0) when a physical strain rate is given");
   if (r.physical_rate == 0)
     r.physical_rate = r.run_rate;
   if (r.physical_rate > 0)
     r.viscosity_factor = dem::viscosity_scale(r.physical_rate, r.run_rate);
-  const std::string dependence = d.text("rate/dependence");
   if (dependence != "none")
   {
     if (!(r.physical_rate > 0))
-      d.fail("rate/dependence", "expected a strain rate (rate/physical strain rate or the loading) for '" +
-                                  dependence + "'");
+      throw DeckError(deck + ": key 'rate/dependence' has value '" + dependence +
+                      "': expected a strain rate (rate/physical strain rate or the loading) for it");
     r.strength_factor = dem::RateLaw{}.strength_factor(r.physical_rate, r.temperature);
     if (dependence == "bonds and stiffness")
       r.stiffness_factor = r.strength_factor;
@@ -137,10 +163,10 @@ void declare_motion(DeckSchema &s, const std::string &default_gravity, double de
   s.leave();
 }
 
-dem::SimulationSettings read_motion(const Deck &d)
+dem::SimulationSettings parse_motion(const Deck &d)
 {
   dem::SimulationSettings m;
-  m.gravity = read_vec3(d, "motion/gravity");
+  m.gravity = parse_vec3(d, "motion/gravity");
   m.local_damping = d.real("motion/local damping");
   if (m.local_damping >= 1)
     d.fail("motion/local damping", "expected a number < 1 (alpha = 1 would cancel every force)");
@@ -154,12 +180,20 @@ dem::SimulationSettings read_motion(const Deck &d)
 void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool test)
 {
   s.enter("bonds");
-  s.choice("install", modes.front(), modes,
-           "Which pairs get PFC contact bonds at the start: 'none', 'touching' (every touching "
-           "pair), or 'list' (the pairs of the list file).");
-  s.text("list file", "",
-         "CSV of bonded pairs for install = list: columns first,second (ball indices from 0) and "
-         "optionally normal_strength_n, shear_strength_n [N].");
+  const std::map<std::string, std::string> meaning = {
+    {"none", "no bonds"},
+    {"touching", "every touching pair"},
+    {"sample", "the bonds the sample file carries"},
+    {"list", "the pairs of the list file"}};
+  std::string help = "Which pairs get PFC contact bonds at the start:";
+  for (const std::string &m : modes)
+    help += " '" + m + "': " + meaning.at(m) + ";";
+  help.back() = '.';
+  s.choice("install", modes.front(), modes, help);
+  if (std::find(modes.begin(), modes.end(), "list") != modes.end())
+    s.text("list file", "",
+           "CSV of bonded pairs for install = list: columns first,second (ball indices from 0) and "
+           "optionally normal_strength_n, shear_strength_n [N].");
   s.real("normal strength", 31.3, 0, inf, "N",
          "Mean tensile strength phi_n of a bond, a force (thesis eq. 6.1: phi = 4 sigma R^2).", true);
   s.real("shear strength", 31.3, 0, inf, "N", "Mean shear strength phi_s of a bond, a force.", true);
@@ -179,15 +213,30 @@ void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool te
   s.leave();
 }
 
-void finish_bonds(const Deck &d, dem::ContactTable &table, const dem::ParticleStore &p, const RateScaling &rate)
+BondSpec BondSpec::parse(const Deck &d, bool test)
 {
-  dem::scale_bond_strengths(table, rate.strength_factor);
-  const double delta_c = d.real("bonds/break displacement");
-  if (delta_c > 0)
-    dem::set_break_displacement(table, p, delta_c);
+  BondSpec b;
+  b.install = d.text("bonds/install");
+  if (b.install == "list")
+  {
+    if (d.text("bonds/list file").empty())
+      d.fail("bonds/list file", "expected a CSV file of bonded pairs when install = list");
+    b.list_file = d.file("bonds/list file");
+  }
+  b.settings = parse_bond_settings(d);
+  if (test)
+    b.break_displacement = d.real("bonds/break displacement");
+  return b;
 }
 
-dem::BondSettings read_bond_settings(const Deck &d)
+void BondSpec::finish(dem::ContactTable &table, const dem::ParticleStore &p, const RateScaling &rate) const
+{
+  dem::scale_bond_strengths(table, rate.strength_factor);
+  if (break_displacement > 0)
+    dem::set_break_displacement(table, p, break_displacement);
+}
+
+dem::BondSettings parse_bond_settings(const Deck &d)
 {
   dem::BondSettings b;
   b.normal_strength = d.real("bonds/normal strength");
@@ -212,12 +261,21 @@ void declare_ball_properties(DeckSchema &s)
   s.leave();
 }
 
-void apply_ball_properties(const Deck &d, dem::BallSpec &b, const RateScaling &rate)
+dem::BallSpec parse_ball_properties(const Deck &d)
 {
+  dem::BallSpec b;
   b.density = d.real("balls/density");
-  b.kn = d.real("balls/normal stiffness") * rate.stiffness_factor;
-  b.ks = d.real("balls/shear stiffness") * rate.stiffness_factor;
+  b.kn = d.real("balls/normal stiffness");
+  b.ks = d.real("balls/shear stiffness");
   b.friction = d.real("balls/friction");
+  return b;
+}
+
+dem::BallSpec scaled(dem::BallSpec ball, const RateScaling &rate)
+{
+  ball.kn *= rate.stiffness_factor;
+  ball.ks *= rate.stiffness_factor;
+  return ball;
 }
 
 void declare_wall_properties(DeckSchema &s, double kn, double ks, double friction)
@@ -227,15 +285,22 @@ void declare_wall_properties(DeckSchema &s, double kn, double ks, double frictio
   s.real("friction", friction, 0, inf, "-", "Friction coefficient of the wall (a pair uses the smaller).");
 }
 
-dem::WallProps read_wall_properties(const Deck &d, const std::string &section)
+dem::WallProps parse_wall_properties(const Deck &d, const std::string &section)
 {
-  return {d.real(section + "/normal stiffness"), d.real(section + "/shear stiffness"),
-          d.real(section + "/friction")};
+  const dem::WallProps w{d.real(section + "/normal stiffness"), d.real(section + "/shear stiffness"),
+                         d.real(section + "/friction")};
+  if (w.friction > 0 && w.ks == 0)
+    d.fail(section + "/friction", "a wall with shear stiffness 0 carries no shear force, so its friction does "
+                                  "nothing: expected friction 0, or a shear stiffness > 0 N/m");
+  return w;
 }
 
-dem::Vec3 read_vec3(const Deck &d, const std::string &key)
+dem::Vec3 parse_vec3(const Deck &d, const std::string &key, bool nonzero)
 {
   const auto v = d.vector3(key);
-  return {v[0], v[1], v[2]};
+  const dem::Vec3 out(v[0], v[1], v[2]);
+  if (nonzero && out.norm() == 0)
+    d.fail(key, "expected a non-zero vector");
+  return out;
 }
 } // namespace verify

@@ -61,6 +61,18 @@ CsvSeries::CsvSeries(const std::string &path, const std::string &comment,
   std::fflush(file_);
 }
 
+CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_t keep)
+  : columns_(columns), path_(path)
+{
+  std::error_code ec;
+  std::filesystem::resize_file(path, keep, ec);
+  if (ec)
+    throw std::runtime_error(path + ": cannot continue the file of the checkpoint: " + ec.message());
+  file_ = std::fopen(path.c_str(), "ab");
+  if (!file_)
+    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+}
+
 CsvSeries::~CsvSeries()
 {
   if (file_)

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ class CsvSeries
 public:
   /// Creates (truncates) the file and writes a comment line and the header.
   CsvSeries(const std::string &path, const std::string &comment, const std::vector<std::string> &columns);
+  /// Continues a file written earlier: cuts it back to its first `keep`
+  /// bytes (whole rows, as a checkpoint recorded them) and appends.
+  CsvSeries(const std::string &path, std::size_t columns, std::uintmax_t keep);
   ~CsvSeries();
   CsvSeries(const CsvSeries &) = delete;
   CsvSeries &operator=(const CsvSeries &) = delete;

@@ -67,6 +67,24 @@ std::string collection(const std::string &stem, const std::vector<double> &times
 
 ParaviewWriter::ParaviewWriter(std::string dir) : dir_(std::move(dir)) { make_directories(dir_); }
 
+nlohmann::json ParaviewWriter::state() const
+{
+  nlohmann::json broken = nlohmann::json::array();
+  for (const BrokenBond &b : broken_)
+    broken.push_back({b.point.x(), b.point.y(), b.point.z(), b.mode, b.time});
+  return {{"frames", frame_}, {"times_s", times_}, {"broken", broken}};
+}
+
+void ParaviewWriter::restore(const nlohmann::json &state)
+{
+  frame_ = state.at("frames").get<int>();
+  times_ = state.at("times_s").get<std::vector<double>>();
+  broken_.clear();
+  for (const nlohmann::json &b : state.at("broken"))
+    broken_.push_back({dem::Vec3(b.at(0).get<double>(), b.at(1).get<double>(), b.at(2).get<double>()),
+                       b.at(3).get<int>(), b.at(4).get<double>()});
+}
+
 void ParaviewWriter::add_breaks(const dem::Simulation &sim, const std::vector<dem::BondBreak> &breaks)
 {
   const dem::ParticleStore &p = sim.particles();

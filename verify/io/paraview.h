@@ -17,6 +17,8 @@
 #include "dem/simulation.h"
 
 #include <string>
+#include <nlohmann/json.hpp>
+
 #include <vector>
 
 namespace verify
@@ -28,6 +30,11 @@ public:
   /// Records bond breaks (call with each batch taken from the simulation).
   void add_breaks(const dem::Simulation &sim, const std::vector<dem::BondBreak> &breaks);
   void write_frame(const dem::Simulation &sim, double time);
+
+  /// What a resumed run needs to continue the frames where they stopped
+  /// (frame count and times, bonds broken so far), exact.
+  nlohmann::json state() const;
+  void restore(const nlohmann::json &state);
 
 private:
   struct BrokenBond

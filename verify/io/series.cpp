@@ -9,6 +9,11 @@ void Series::stream_to(const std::string &path, const std::string &comment)
   sink_ = std::make_unique<CsvSeries>(path, comment, columns_);
 }
 
+void Series::resume_stream(const std::string &path, std::uintmax_t keep)
+{
+  sink_ = std::make_unique<CsvSeries>(path, columns_.size(), keep);
+}
+
 void Series::add(std::vector<double> row)
 {
   if (sink_)

@@ -19,6 +19,12 @@ public:
 
   /// Streams every later row to `path` as well (header and comment written now).
   void stream_to(const std::string &path, const std::string &comment);
+  /// Continues streaming to a file written earlier, cut back to `keep`
+  /// bytes; the rows of that file are restored with restore_rows().
+  void resume_stream(const std::string &path, std::uintmax_t keep);
+  /// Replaces the rows in memory (a checkpoint's exact values).
+  void restore_rows(std::vector<std::vector<double>> rows) { rows_ = std::move(rows); }
+  const std::vector<std::vector<double>> &all_rows() const { return rows_; }
 
   void add(std::vector<double> row);
   std::size_t rows() const { return rows_.size(); }

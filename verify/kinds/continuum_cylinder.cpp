@@ -259,14 +259,23 @@ void add_gci(const std::vector<CylinderResult> &runs, std::size_t finest, double
 }
 } // namespace
 
-CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
+continuum::CylinderSpec parse_cylinder(const Deck &deck)
 {
-  const int threads = apply_threads(options);
   continuum::CylinderSpec spec = read_cylinder_spec(deck);
-  const std::vector<unsigned int> levels = study_levels(deck);
+  study_levels(deck);
   const auto window = deck.real_list("measurement/fit window");
   if (!(window[1] > window[0]))
     deck.fail("measurement/fit window", "expected two increasing strains");
+  read_continuum_material(deck);
+  return spec;
+}
+
+CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  continuum::CylinderSpec spec = parse_cylinder(deck);
+  const std::vector<unsigned int> levels = study_levels(deck);
+  const auto window = deck.real_list("measurement/fit window");
   const continuum::ParallelInfo mpi = continuum::parallel_info();
   const bool writer = mpi.rank == 0 && !options.out_dir.empty();
   std::unique_ptr<RunDirectory> dir;

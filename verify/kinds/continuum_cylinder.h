@@ -48,6 +48,10 @@ struct CylinderResult
   std::vector<GciResult> gci; ///< GCI study only: peak stress, stress at 1 % strain
 };
 
+/// Validates a cylinder deck without running it: the test, the study
+/// levels, the fit window and the material.
+continuum::CylinderSpec parse_cylinder(const Deck &deck);
+
 CylinderResult run_cylinder(const Deck &deck, const RunOptions &options);
 
 /// Linear interpolation of y at x in a series with increasing xs; NaN outside.

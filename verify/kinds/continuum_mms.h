@@ -33,6 +33,9 @@ struct MmsResult
   RunStatus status;
 };
 
+/// Validates an mms deck without running it (read_mms_spec).
+inline continuum::MmsSpec parse_mms(const Deck &deck) { return read_mms_spec(deck); }
+
 MmsResult run_mms_deck(const Deck &deck, const RunOptions &options);
 
 /// One convergence table per error (displacement L2 and H1, stress, Kelvin

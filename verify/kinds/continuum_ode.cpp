@@ -93,21 +93,45 @@ Units units(bool contact, Control control)
 }
 } // namespace
 
-OdeResult run_burgers_ode(const Deck &deck, const RunOptions &options)
+BurgersOdeSpec parse_burgers_ode(const Deck &deck)
 {
-  const int threads = apply_threads(options);
-  const continuum::BurgersChain chain{deck.real("chain/maxwell spring"), deck.real("chain/maxwell dashpot"),
-                                      deck.real("chain/kelvin spring"), deck.real("chain/kelvin dashpot")};
-  const Control control = deck.text("loading/control") == "force" ? Control::force : Control::displacement;
-  const History history = read_history(deck);
-  if (!has_closed_form(control, history))
+  BurgersOdeSpec spec;
+  spec.deck = DeckRecord(deck);
+  spec.title = deck.text("title");
+  spec.chain = {deck.real("chain/maxwell spring"), deck.real("chain/maxwell dashpot"),
+                deck.real("chain/kelvin spring"), deck.real("chain/kelvin dashpot")};
+  spec.contact = deck.text("chain/scale") == "contact";
+  spec.control_name = deck.text("loading/control");
+  spec.history_name = deck.text("loading/history");
+  spec.control = spec.control_name == "force" ? Control::force : Control::displacement;
+  spec.history = read_history(deck);
+  if (!has_closed_form(spec.control, spec.history))
     deck.fail("loading/history", "expected 'step' under force control (creep, eq. 2.15, is the closed form "
                                  "demvv checks a prescribed force against)");
-  const double duration = deck.real("loading/duration"), interval = deck.real("output/interval");
-  if (interval > duration || duration / interval > 1e7)
+  spec.duration = deck.real("loading/duration");
+  spec.interval = deck.real("output/interval");
+  if (spec.interval > spec.duration || spec.duration / spec.interval > 1e7)
     deck.fail("output/interval", "expected an interval between duration / 1e7 and the duration (" +
-                                   std::to_string(duration) + " s)");
-  const bool contact = deck.text("chain/scale") == "contact";
+                                   std::to_string(spec.duration) + " s)");
+  spec.tolerances.relative = deck.real("solver/relative tolerance");
+  spec.tolerances.absolute = deck.real("solver/absolute tolerance");
+  spec.tolerances.max_steps = deck.integer("solver/max steps");
+  return spec;
+}
+
+OdeResult run_burgers_ode(const Deck &deck, const RunOptions &options)
+{
+  return run_burgers_ode(parse_burgers_ode(deck), options);
+}
+
+OdeResult run_burgers_ode(const BurgersOdeSpec &spec, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  const continuum::BurgersChain &chain = spec.chain;
+  const Control control = spec.control;
+  const History &history = spec.history;
+  const double duration = spec.duration, interval = spec.interval;
+  const bool contact = spec.contact;
   const Units u = units(contact, control);
 
   std::vector<double> times;
@@ -122,17 +146,14 @@ OdeResult run_burgers_ode(const Deck &deck, const RunOptions &options)
   std::unique_ptr<RunDirectory> dir;
   if (!options.out_dir.empty())
   {
-    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, 0);
+    dir = std::make_unique<RunDirectory>(options.out_dir, spec.deck, threads, 0);
     result.series.stream_to(dir->path("series.csv"),
-                            "demvv burgers_ode '" + deck.name() + "': SUNDIALS CVODE (BDF) solution and " +
+                            "demvv burgers_ode '" + spec.deck.name + "': SUNDIALS CVODE (BDF) solution and " +
                               closed_form_name(control, history) + "; SI units" +
                               (contact ? "" : "; compression positive"));
   }
 
-  continuum::OdeTolerances tolerances;
-  tolerances.relative = deck.real("solver/relative tolerance");
-  tolerances.absolute = deck.real("solver/absolute tolerance");
-  tolerances.max_steps = deck.integer("solver/max steps");
+  const continuum::OdeTolerances &tolerances = spec.tolerances;
   continuum::OdeStatistics statistics;
   const auto start = std::chrono::steady_clock::now();
   double largest_error = 0, largest_reference = 0;
@@ -165,15 +186,15 @@ OdeResult run_burgers_ode(const Deck &deck, const RunOptions &options)
   const std::string stiffness = contact ? "n_per_m" : "pa", viscosity = contact ? "n_s_per_m" : "pa_s";
   result.summary = {
     {"kind", "burgers_ode"},
-    {"title", deck.text("title")},
+    {"title", spec.title},
     {"status", result.status.to_json()},
-    {"scale", deck.text("chain/scale")},
+    {"scale", contact ? "contact" : "material point"},
     {"chain", {{"maxwell_spring_" + stiffness, chain.maxwell_spring},
                {"maxwell_dashpot_" + viscosity, chain.maxwell_dashpot},
                {"kelvin_spring_" + stiffness, chain.kelvin_spring},
                {"kelvin_dashpot_" + viscosity, chain.kelvin_dashpot}}},
-    {"loading", {{"control", deck.text("loading/control")},
-                 {"history", deck.text("loading/history")},
+    {"loading", {{"control", spec.control_name},
+                 {"history", spec.history_name},
                  {"duration_s", duration}}},
     {"solver", {{"method", "SUNDIALS CVODE, BDF, Newton with exact dense Jacobian"},
                 {"relative_tolerance", tolerances.relative},

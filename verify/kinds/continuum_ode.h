@@ -10,8 +10,11 @@
 #pragma once
 
 #include "verify/decks/deck.h"
-#include "verify/run/run.h"
 #include "verify/io/series.h"
+#include "verify/run/run.h"
+
+#include "continuum/burgers_chain.h"
+#include "continuum/burgers_ode.h"
 
 #include <nlohmann/json.hpp>
 
@@ -30,5 +33,22 @@ struct OdeResult
   double relative_error = 0;
 };
 
+/// A burgers_ode deck, parsed and validated.
+struct BurgersOdeSpec
+{
+  DeckRecord deck;
+  std::string title;
+  continuum::BurgersChain chain;
+  bool contact = true;            ///< a contact (N, m) or a material point (Pa, strain)
+  continuum::Control control = continuum::Control::displacement;
+  std::string control_name, history_name;
+  continuum::History history;
+  double duration = 0, interval = 0; ///< s
+  continuum::OdeTolerances tolerances;
+};
+
+BurgersOdeSpec parse_burgers_ode(const Deck &deck);
+OdeResult run_burgers_ode(const BurgersOdeSpec &spec, const RunOptions &options);
+/// parse_burgers_ode then run_burgers_ode.
 OdeResult run_burgers_ode(const Deck &deck, const RunOptions &options);
 } // namespace verify

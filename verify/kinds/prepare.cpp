@@ -37,7 +37,7 @@ dem::PackingSettings read_settings(const Deck &d)
   s.aspect = d.real("sample/aspect ratio");
   s.target_solid_fraction = d.real("sample/target solid fraction");
   s.seed = static_cast<std::uint64_t>(d.integer("sample/seed"));
-  apply_ball_properties(d, s.ball);
+  s.ball = parse_ball_properties(d);
   s.walls = {d.real("walls/normal stiffness"), d.real("walls/shear stiffness"), 0};
   s.growth_stages = static_cast<int>(d.integer("preparation/growth stages"));
   s.growth_cycles = d.integer("preparation/growth cycles");
@@ -50,7 +50,7 @@ dem::PackingSettings read_settings(const Deck &d)
   s.local_damping = d.real("preparation/local damping");
   if (s.local_damping >= 1)
     d.fail("preparation/local damping", "expected a number < 1");
-  s.bonds = read_bond_settings(d);
+  s.bonds = parse_bond_settings(d);
   s.bond = d.text("bonds/install") == "touching";
   if (s.particles == 0 && (s.diameter <= 0 || s.height <= 0))
     d.fail("sample/particles", "expected a number of balls, or a cell diameter and height (both > 0)");
@@ -108,9 +108,8 @@ void declare_prepare(DeckSchema &s)
   s.leave();
 }
 
-PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
+dem::PackingSettings parse_prepare(const Deck &deck)
 {
-  const int threads = apply_threads(options);
   const dem::PackingSettings settings = read_settings(deck);
   try
   {
@@ -120,6 +119,13 @@ PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
   {
     deck.fail(key_of(e.setting), std::string(e.what()));
   }
+  return settings;
+}
+
+PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  const dem::PackingSettings settings = parse_prepare(deck);
 
   std::unique_ptr<RunDirectory> dir;
   if (!options.out_dir.empty())

@@ -22,6 +22,10 @@ struct PrepareResult
   RunStatus status;
 };
 
+/// The preparation a deck describes, validated (an impossible packing is
+/// refused here, before any file is written).
+dem::PackingSettings parse_prepare(const Deck &deck);
+
 /// Prepares the sample of a prepare deck; with options.out_dir set, writes
 /// the run directory (sample.json among it).
 PrepareResult run_prepare(const Deck &deck, const RunOptions &options);

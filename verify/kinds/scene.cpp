@@ -2,12 +2,11 @@
 
 #include "verify/decks/csv_input.h"
 #include "verify/decks/deck_sections.h"
-#include "verify/io/paraview.h"
 
 #include "dem/measure.h"
 
-#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -16,9 +15,34 @@ namespace verify
 namespace
 {
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr int plane_slots = 4;
 
-std::string plane_section(int k) { return "walls/plane " + std::to_string(k); }
+void declare_plane(DeckSchema &s)
+{
+  s.flag("enabled", true, "Whether this plane wall exists (false keeps it in the deck, switched off).");
+  s.vector3("point", "0, 0, 0", "m", "A point on the plane.");
+  s.vector3("normal", "0, 0, 1", "-", "Normal of the plane, pointing towards the balls (normalised).");
+  s.vector3("velocity", "0, 0, 0", "m/s", "Constant velocity of the plane.");
+  declare_wall_properties(s, 1.2e7, 0, 0);
+}
+
+void declare_cylinder(DeckSchema &s)
+{
+  s.flag("enabled", true, "Whether this cylindrical wall exists (false keeps it in the deck, switched off).");
+  s.vector3("axis point", "0, 0, 0", "m", "A point on the axis.");
+  s.vector3("axis", "0, 0, 1", "-", "Direction of the axis (normalised).");
+  s.real("radius", 0.01, 0, inf, "m", "Inner radius.", true);
+  s.real("radial velocity", 0, -inf, inf, "m/s", "Rate of change of the radius (> 0 expands).");
+  declare_wall_properties(s, 1.2e7, 0, 0);
+}
+
+/// The wall's name in the series columns: the label, or keyword + label
+/// when the label is a number ("plane 2" -> plane2) or absent.
+std::string wall_name(const std::string &section, const std::string &keyword)
+{
+  const std::string label = section.size() > keyword.size() ? section.substr(keyword.size() + 1) : "";
+  const bool numeric = !label.empty() && label.find_first_not_of("0123456789") == std::string::npos;
+  return label.empty() || numeric ? keyword + label : label;
+}
 } // namespace
 
 void declare_scene(DeckSchema &s)
@@ -38,24 +62,11 @@ void declare_scene(DeckSchema &s)
   s.real("resting overlap", 1e-3, 0, 0.1, "-",
          "Largest ball-wall overlap accepted at the start, as a fraction of the ball radius (a ball "
          "resting on a wall); larger overlaps are refused as input errors.");
-  for (int k = 1; k <= plane_slots; ++k)
-  {
-    s.enter("plane " + std::to_string(k));
-    s.flag("enabled", false, "Whether this plane wall exists.");
-    s.vector3("point", "0, 0, 0", "m", "A point on the plane.");
-    s.vector3("normal", "0, 0, 1", "-", "Normal of the plane, pointing towards the balls (normalised).");
-    s.vector3("velocity", "0, 0, 0", "m/s", "Constant velocity of the plane.");
-    declare_wall_properties(s, 1.2e7, 0, 0);
-    s.leave();
-  }
-  s.enter("cylinder");
-  s.flag("enabled", false, "Whether the cylindrical wall exists (balls are confined to its inside).");
-  s.vector3("axis point", "0, 0, 0", "m", "A point on the axis.");
-  s.vector3("axis", "0, 0, 1", "-", "Direction of the axis (normalised).");
-  s.real("radius", 0.01, 0, inf, "m", "Inner radius.", true);
-  s.real("radial velocity", 0, -inf, inf, "m/s", "Rate of change of the radius (> 0 expands).");
-  declare_wall_properties(s, 1.2e7, 0, 0);
-  s.leave();
+  s.repeated("plane", &declare_plane,
+             "a plane wall; its forces go to series.csv as NAME_force_x_n ... (a numeric NAME k gives planek)");
+  s.repeated("cylinder", &declare_cylinder,
+             "a cylindrical wall that confines the balls to its inside; its forces go to series.csv as "
+             "NAME_force_x_n ... (the bare 'cylinder' gives cylinder)");
   s.leave();
   declare_rate(s);
   declare_motion(s, "0, 0, 0", 0.7);
@@ -68,6 +79,7 @@ void declare_scene(DeckSchema &s)
   s.text("track pairs", "", "Pairs whose contact goes to contacts.csv: 'i-j' items, comma separated.");
   s.flag("paraview", false, "Write ParaView files (particles, contact forces, broken bonds) to paraview/.");
   s.real("paraview interval", 0, 0, inf, "s", "Time between ParaView frames; 0 uses the output interval.");
+  declare_checkpoint_interval(s);
   s.leave();
 }
 
@@ -97,7 +109,7 @@ dem::Index parse_index(const Deck &deck, const std::string &key, const std::stri
   return static_cast<dem::Index>(v);
 }
 
-dem::ParticleStore read_particles(const Deck &deck)
+dem::ParticleStore parse_particles(const Deck &deck)
 {
   const CsvTable t = CsvTable::read(deck.file("particles/file"));
   if (t.rows() == 0)
@@ -106,12 +118,12 @@ dem::ParticleStore read_particles(const Deck &deck)
     if (!t.has(c))
       throw DeckError(t.path() + ": column '" + std::string(c) +
                       "' is missing: expected a header with x_m,y_m,z_m,radius_m");
+  const dem::BallSpec common = parse_ball_properties(deck);
   dem::ParticleStore p;
   p.reserve(t.rows());
   for (std::size_t r = 0; r < t.rows(); ++r)
   {
-    dem::BallSpec b;
-    apply_ball_properties(deck, b);
+    dem::BallSpec b = common;
     b.position = {t.get(r, "x_m"), t.get(r, "y_m"), t.get(r, "z_m")};
     b.radius = t.get(r, "radius_m");
     b.velocity = {t.get(r, "vx_mps", 0), t.get(r, "vy_mps", 0), t.get(r, "vz_mps", 0)};
@@ -146,44 +158,52 @@ dem::ParticleStore read_particles(const Deck &deck)
   return p;
 }
 
-dem::WallSet read_walls(const Deck &deck)
+/// The walls in the order the deck names them, planes first, and for each
+/// wall the deck key that places it (for errors found later).
+dem::WallSet parse_walls(const Deck &deck, std::vector<std::string> &placing_key)
 {
   dem::WallSet walls;
-  for (int k = 1; k <= plane_slots; ++k)
+  for (const std::string &section : deck.instances("walls", "plane"))
   {
-    const std::string sec = plane_section(k);
+    const std::string sec = "walls/" + section;
     if (!deck.flag(sec + "/enabled"))
       continue;
     dem::Wall w;
-    w.name = "plane" + std::to_string(k);
+    w.name = wall_name(section, "plane");
     w.shape = dem::WallShape::plane;
-    w.point = read_vec3(deck, sec + "/point");
-    w.direction = read_vec3(deck, sec + "/normal");
-    if (w.direction.norm() == 0)
-      deck.fail(sec + "/normal", "expected a non-zero normal vector");
-    w.velocity = read_vec3(deck, sec + "/velocity");
-    w.props = read_wall_properties(deck, sec);
+    w.point = parse_vec3(deck, sec + "/point");
+    w.direction = parse_vec3(deck, sec + "/normal", true);
+    w.velocity = parse_vec3(deck, sec + "/velocity");
+    w.props = parse_wall_properties(deck, sec);
     walls.add(w);
+    placing_key.push_back(sec + "/point");
   }
-  if (deck.flag("walls/cylinder/enabled"))
+  for (const std::string &section : deck.instances("walls", "cylinder"))
   {
+    const std::string sec = "walls/" + section;
+    if (!deck.flag(sec + "/enabled"))
+      continue;
     dem::Wall w;
-    w.name = "cylinder";
+    w.name = wall_name(section, "cylinder");
     w.shape = dem::WallShape::cylinder;
-    w.point = read_vec3(deck, "walls/cylinder/axis point");
-    w.direction = read_vec3(deck, "walls/cylinder/axis");
-    if (w.direction.norm() == 0)
-      deck.fail("walls/cylinder/axis", "expected a non-zero axis vector");
-    w.radius = deck.real("walls/cylinder/radius");
-    w.radial_velocity = deck.real("walls/cylinder/radial velocity");
-    w.props = read_wall_properties(deck, "walls/cylinder");
+    w.point = parse_vec3(deck, sec + "/axis point");
+    w.direction = parse_vec3(deck, sec + "/axis", true);
+    w.radius = deck.real(sec + "/radius");
+    w.radial_velocity = deck.real(sec + "/radial velocity");
+    w.props = parse_wall_properties(deck, sec);
     walls.add(w);
+    placing_key.push_back(sec + "/radius");
   }
+  for (dem::WallIndex a = 0; a < walls.size(); ++a)
+    for (dem::WallIndex b = 0; b < a; ++b)
+      if (walls[a].name == walls[b].name)
+        deck.fail(placing_key[a], "two walls are both named '" + walls[a].name + "': expected distinct names");
   return walls;
 }
 
 /// A wall that starts inside a ball would fling it away: bad input.
-void check_walls_clear(const Deck &deck, const dem::ParticleStore &p, const dem::WallSet &walls)
+void check_walls_clear(const Deck &deck, const dem::ParticleStore &p, const dem::WallSet &walls,
+                       const std::vector<std::string> &placing_key)
 {
   const double resting = deck.real("walls/resting overlap");
   for (dem::WallIndex w = 0; w < walls.size(); ++w)
@@ -192,34 +212,21 @@ void check_walls_clear(const Deck &deck, const dem::ParticleStore &p, const dem:
       const double clearance = walls.clearance(w, p.position[b]);
       if (clearance < p.radius[b] * (1 - resting))
       {
-        const std::string name = walls[w].name;
-        const std::string key = name == "cylinder" ? "walls/cylinder/radius"
-                                                   : plane_section(std::stoi(name.substr(5))) + "/point";
         std::ostringstream msg;
-        msg << "wall '" << name << "' overlaps particle " << b << " at the start (clearance " << clearance
-            << " m, radius " << p.radius[b] << " m): expected every ball clear of every wall, up to the "
-            << "resting overlap of walls/resting overlap";
-        deck.fail(key, msg.str());
+        msg << "wall '" << walls[w].name << "' overlaps particle " << b << " at the start (clearance "
+            << clearance << " m, radius " << p.radius[b] << " m): expected every ball clear of every wall, up to "
+            << "the resting overlap of walls/resting overlap";
+        deck.fail(placing_key[w], msg.str());
       }
     }
 }
 
-void install_bonds(const Deck &deck, dem::Simulation &sim, dem::BondReport &report)
+std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, dem::Index n)
 {
-  const std::string mode = deck.text("bonds/install");
-  if (mode == "none")
-    return;
-  sim.refresh_contacts();
-  const dem::BondSettings settings = read_bond_settings(deck);
-  if (mode == "touching")
-  {
-    report = dem::bond_touching_pairs(sim.contacts(), sim.particles(), settings);
-    return;
-  }
-  if (deck.text("bonds/list file").empty())
-    deck.fail("bonds/list file", "expected a CSV file of bonded pairs when install = list");
-  const CsvTable t = CsvTable::read(deck.file("bonds/list file"));
-  const dem::Index n = sim.particles().size();
+  std::vector<ListedBond> out;
+  if (bonds.install != "list")
+    return out;
+  const CsvTable t = CsvTable::read(bonds.list_file);
   for (std::size_t r = 0; r < t.rows(); ++r)
   {
     for (const char *c : {"first", "second"})
@@ -228,16 +235,34 @@ void install_bonds(const Deck &deck, dem::Simulation &sim, dem::BondReport &repo
       if (v < 0 || v >= n || v != std::floor(v) || (std::string(c) == "second" && v == t.get(r, "first")))
         t.fail(r, c, "expected a ball index in [0, " + std::to_string(n - 1) + "], distinct from the other");
     }
-    const double fn = t.get(r, "normal_strength_n", settings.normal_strength);
-    const double fs = t.get(r, "shear_strength_n", settings.shear_strength);
-    if (!(fn > 0))
+    ListedBond b;
+    b.first = static_cast<dem::Index>(t.get(r, "first"));
+    b.second = static_cast<dem::Index>(t.get(r, "second"));
+    b.normal_strength = t.get(r, "normal_strength_n", bonds.settings.normal_strength);
+    b.shear_strength = t.get(r, "shear_strength_n", bonds.settings.shear_strength);
+    if (!(b.normal_strength > 0))
       t.fail(r, "normal_strength_n", "expected a strength > 0 N");
-    if (!(fs > 0))
+    if (!(b.shear_strength > 0))
       t.fail(r, "shear_strength_n", "expected a strength > 0 N");
-    dem::bond_pair(sim.contacts(), sim.particles(), static_cast<dem::Index>(t.get(r, "first")),
-                   static_cast<dem::Index>(t.get(r, "second")), fn, fs);
+    out.push_back(b);
+  }
+  return out;
+}
+
+dem::BondReport install_bonds(const SceneSpec &spec, dem::Simulation &sim)
+{
+  dem::BondReport report;
+  if (spec.bonds.install == "none")
+    return report;
+  sim.refresh_contacts();
+  if (spec.bonds.install == "touching")
+    return dem::bond_touching_pairs(sim.contacts(), sim.particles(), spec.bonds.settings);
+  for (const ListedBond &b : spec.bond_list)
+  {
+    dem::bond_pair(sim.contacts(), sim.particles(), b.first, b.second, b.normal_strength, b.shear_strength);
     ++report.bonded;
   }
+  return report;
 }
 
 std::vector<std::string> series_columns(const dem::WallSet &walls)
@@ -265,90 +290,49 @@ std::vector<std::string> series_columns(const dem::WallSet &walls)
       c.push_back(walls[w].name + "_force_" + axis + "_n");
   return c;
 }
-} // namespace
 
-SceneResult run_scene(const Deck &deck, const RunOptions &options)
+/// A scene as the DEM driver runs it: nothing moves but what the deck
+/// prescribes; rows record energies, counts and wall forces, and the
+/// tracked balls and pairs.
+class SceneProtocol final : public DemProtocol
 {
-  const int threads = apply_threads(options);
-  dem::ParticleStore particles = read_particles(deck);
-  dem::WallSet walls = read_walls(deck);
-  check_walls_clear(deck, particles, walls);
+public:
+  SceneProtocol(const SceneSpec &spec, SceneResult &result) : spec_(spec), result_(result) {}
 
-  const RateScaling rate = read_rate(deck, 0);
-  rate.scale_ball_stiffness(particles);
-  SceneResult result;
-  result.sim = std::make_unique<dem::Simulation>(std::move(particles), std::move(walls),
-                                                 read_contact_law(deck, rate), read_motion(deck));
-  dem::Simulation &sim = *result.sim;
-  install_bonds(deck, sim, result.bonds);
-  finish_bonds(deck, sim.contacts(), sim.particles(), rate);
-
-  const dem::Index n = sim.particles().size();
-  std::vector<dem::Index> tracked;
-  for (const auto &item : items(deck.text("output/track particles")))
-    tracked.push_back(parse_index(deck, "output/track particles", item, n));
-  std::vector<dem::Pair> pairs;
-  for (const auto &item : items(deck.text("output/track pairs")))
+  std::string label() const override { return "scene " + spec_.deck.name; }
+  std::string clock_name() const override { return "time_s"; }
+  double clock(const dem::Simulation &sim) const override { return sim.time(); }
+  double fraction_done(const dem::Simulation &sim) const override { return sim.time() / spec_.duration; }
+  bool finished(const dem::Simulation &sim) const override { return sim.time() >= spec_.duration; }
+  std::string state_text(const dem::Simulation &sim) const override
   {
-    const auto dash = item.find('-');
-    if (dash == std::string::npos)
-      deck.fail("output/track pairs", "expected items of the form i-j, found '" + item + "'");
-    dem::Index i = parse_index(deck, "output/track pairs", item.substr(0, dash), n);
-    dem::Index j = parse_index(deck, "output/track pairs", item.substr(dash + 1), n);
-    if (i == j)
-      deck.fail("output/track pairs", "expected two different balls in '" + item + "'");
-    pairs.emplace_back(std::min(i, j), std::max(i, j));
+    char text[64];
+    std::snprintf(text, sizeof text, "t = %.4g s", sim.time());
+    return text;
   }
 
-  result.series = Series(series_columns(sim.walls()));
-  result.particles = Series({"time_s", "particle", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps",
-                             "wx_radps", "wy_radps", "wz_radps", "fx_n", "fy_n", "fz_n"});
-  result.contacts = Series({"time_s", "first", "second", "overlap_m", "normal_force_n", "shear_force_n",
-                            "shear_x_n", "shear_y_n", "shear_z_n", "bonded", "touching"});
-  const std::string convention = "demvv scene '" + deck.name() + "': SI units, compression positive";
-  RunFiles files(options, deck, threads, deck.integer("bonds/seed"), convention, deck.flag("output/paraview"));
-  RunDirectory *dir = files.directory();
-  ParaviewWriter *paraview = files.paraview();
-  if (dir)
+  void measure(const dem::Simulation &sim) override
   {
-    result.series.stream_to(dir->path("series.csv"), convention);
-    if (!tracked.empty())
-      result.particles.stream_to(dir->path("particles.csv"), convention + "; velocities at t - dt/2");
-    if (!pairs.empty())
-      result.contacts.stream_to(dir->path("contacts.csv"),
-                                convention + "; normal force > 0 in compression, force on the second ball");
-  }
-
-  const double duration = deck.real("run/duration");
-  const double interval = deck.real("output/interval");
-  const double pv_interval = deck.real("output/paraview interval") > 0 ? deck.real("output/paraview interval") : interval;
-  double next_output = 0, next_frame = 0;
-  Progress progress("scene " + deck.name());
-  const auto start = std::chrono::steady_clock::now();
-
-  const auto record = [&](bool final_row) {
     const double t = sim.time();
     const dem::ParticleStore &P = sim.particles();
-    for (dem::Index p : tracked)
-      result.particles.add({t, double(p), P.position[p].x(), P.position[p].y(), P.position[p].z(),
-                            P.velocity[p].x(), P.velocity[p].y(), P.velocity[p].z(), P.spin[p].x(),
-                            P.spin[p].y(), P.spin[p].z(), P.force[p].x(), P.force[p].y(), P.force[p].z()});
-    for (const dem::Pair &pr : pairs)
+    for (dem::Index p : spec_.tracked)
+      result_.particles.add({t, double(p), P.position[p].x(), P.position[p].y(), P.position[p].z(),
+                             P.velocity[p].x(), P.velocity[p].y(), P.velocity[p].z(), P.spin[p].x(),
+                             P.spin[p].y(), P.spin[p].z(), P.force[p].x(), P.force[p].y(), P.force[p].z()});
+    for (const dem::Pair &pr : spec_.tracked_pairs)
     {
       const dem::Contact *c = sim.contacts().find(pr.first, pr.second);
       const dem::ContactState s = c ? c->state : dem::ContactState{};
-      const double gap = (P.position[pr.second] - P.position[pr.first]).norm() - P.radius[pr.first] - P.radius[pr.second];
-      result.contacts.add({t, double(pr.first), double(pr.second), s.touching ? s.overlap : -gap, s.normal_force,
-                           s.shear_force.norm(), s.shear_force.x(), s.shear_force.y(), s.shear_force.z(),
-                           c && c->bond.intact ? 1.0 : 0.0, s.touching ? 1.0 : 0.0});
+      const double gap =
+        (P.position[pr.second] - P.position[pr.first]).norm() - P.radius[pr.first] - P.radius[pr.second];
+      result_.contacts.add({t, double(pr.first), double(pr.second), s.touching ? s.overlap : -gap, s.normal_force,
+                            s.shear_force.norm(), s.shear_force.x(), s.shear_force.y(), s.shear_force.z(),
+                            c && c->bond.intact ? 1.0 : 0.0, s.touching ? 1.0 : 0.0});
     }
-    if (paraview && (final_row || t >= next_frame))
-    {
-      paraview->write_frame(sim, t);
-      next_frame = t + pv_interval;
-    }
-  };
-  const auto record_energy = [&]() {
+  }
+
+  void record(const dem::Simulation &sim) override
+  {
     const dem::EnergyLedger e = sim.energy();
     std::size_t touching = 0, intact = 0;
     for (const dem::Contact &c : sim.contacts().entries())
@@ -379,73 +363,125 @@ SceneResult run_scene(const Deck &deck, const RunOptions &options)
       const dem::Vec3 f = sim.wall_force(w);
       row.insert(row.end(), {f.x(), f.y(), f.z()});
     }
-    result.series.add(std::move(row));
-  };
-
-  try
-  {
-    for (;;)
-    {
-      sim.compute_forces();
-      files.drain_breaks(sim);
-      const bool last = sim.time() >= duration;
-      const bool due = last || sim.time() >= next_output;
-      if (due)
-      {
-        record(last);
-        next_output = sim.time() + interval;
-      }
-      sim.integrate(due);
-      if (due)
-        record_energy();
-      if (last)
-        break;
-      progress.update(sim.time() / duration, "t = " + std::to_string(sim.time()) + " s");
-    }
+    result_.series.add(std::move(row));
   }
-  catch (const dem::NumericalFault &f)
-  {
-    record_fault(result.status, f);
-  }
-  progress.finish();
-  result.status.steps = sim.steps();
-  result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  if (dir)
+  std::vector<SeriesFile> series_files() override
+  {
+    const std::string convention = "demvv scene '" + spec_.deck.name + "': SI units, compression positive";
+    std::vector<SeriesFile> files = {{&result_.series, "series.csv", convention}};
+    if (!spec_.tracked.empty())
+      files.push_back({&result_.particles, "particles.csv", convention + "; velocities at t - dt/2"});
+    if (!spec_.tracked_pairs.empty())
+      files.push_back({&result_.contacts, "contacts.csv",
+                       convention + "; normal force > 0 in compression, force on the second ball"});
+    return files;
+  }
+
+  bool resolves_contact_dynamics() const override { return true; }
+
+  nlohmann::json summary(const dem::Simulation &sim, const RunStatus &status, const ContactResolution &resolution,
+                         const RunDirectory * /*dir*/) const override
   {
     const dem::EnergyLedger e = sim.energy();
-    nlohmann::json summary = {
-      {"kind", "scene"},
-      {"title", deck.text("title")},
-      {"status", result.status.to_json()},
-      {"contact_law", std::string(sim.model().name())},
-      {"rate", rate.to_json()},
-      {"particles", n},
-      {"steps", sim.steps()},
-      {"final_time_s", sim.time()},
-      {"last_time_step_s", sim.time_step()},
-      {"critical_time_step_bound_s", sim.critical_time_step()},
-      {"neighbour_rebuilds", sim.neighbors().rebuilds()},
-      {"bonds", {{"installed", result.bonds.bonded},
-                 {"removed", result.bonds.removed},
-                 {"truncated_strength_draws", result.bonds.truncated_draws},
-                 {"broken_tension", sim.bonds_broken(dem::BreakMode::tension)},
-                 {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)},
-                 {"broken_displacement", sim.bonds_broken(dem::BreakMode::displacement)}}},
-      {"energy_j", {{"kinetic", e.kinetic},
-                    {"strain", e.strain},
-                    {"friction", e.friction},
-                    {"damping", e.damping},
-                    {"bond_released", e.bond_released},
-                    {"boundary_work", e.boundary_work},
-                    {"gravity_work", e.body_work},
-                    {"initial", e.initial},
-                    {"residual", e.residual()}}},
-      {"wall_seconds", result.status.wall_seconds},
-      {"particle_steps_per_second",
-       result.status.wall_seconds > 0 ? double(n) * sim.steps() / result.status.wall_seconds : 0.0}};
-    dir->write_summary(summary);
+    const dem::Index n = sim.particles().size();
+    return {{"kind", "scene"},
+            {"title", spec_.title},
+            {"contact_law", std::string(sim.model().name())},
+            {"rate", spec_.rate.to_json()},
+            {"particles", n},
+            {"steps", sim.steps()},
+            {"final_time_s", sim.time()},
+            {"last_time_step_s", sim.time_step()},
+            {"critical_time_step_bound_s", resolution.smallest_bound_json()},
+            {"contact_resolution", resolution.to_json()},
+            {"neighbour_rebuilds", sim.neighbors().rebuilds()},
+            {"bonds", {{"installed", result_.bonds.bonded},
+                       {"removed", result_.bonds.removed},
+                       {"truncated_strength_draws", result_.bonds.truncated_draws},
+                       {"broken_tension", sim.bonds_broken(dem::BreakMode::tension)},
+                       {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)},
+                       {"broken_displacement", sim.bonds_broken(dem::BreakMode::displacement)}}},
+            {"energy_j", {{"kinetic", e.kinetic},
+                          {"strain", e.strain},
+                          {"friction", e.friction},
+                          {"damping", e.damping},
+                          {"bond_released", e.bond_released},
+                          {"boundary_work", e.boundary_work},
+                          {"gravity_work", e.body_work},
+                          {"initial", e.initial},
+                          {"residual", e.residual()}}},
+            {"wall_seconds", status.wall_seconds},
+            {"particle_steps_per_second",
+             status.wall_seconds > 0 ? double(n) * sim.steps() / status.wall_seconds : 0.0}};
   }
+
+private:
+  const SceneSpec &spec_;
+  SceneResult &result_;
+};
+} // namespace
+
+SceneSpec parse_scene(const Deck &deck)
+{
+  SceneSpec spec;
+  spec.deck = DeckRecord(deck);
+  spec.title = deck.text("title");
+  spec.particles = parse_particles(deck);
+  std::vector<std::string> placing_key;
+  spec.walls = parse_walls(deck, placing_key);
+  check_walls_clear(deck, spec.particles, spec.walls, placing_key);
+  spec.law = LawSpec::parse(deck);
+  spec.rate = RateSpec::parse(deck).scaling(0);
+  spec.motion = parse_motion(deck);
+  spec.bonds = BondSpec::parse(deck);
+  spec.bond_list = parse_bond_list(spec.bonds, spec.particles.size());
+  spec.duration = deck.real("run/duration");
+  spec.output.interval = deck.real("output/interval");
+  spec.output.paraview = deck.flag("output/paraview");
+  spec.output.paraview_interval = deck.real("output/paraview interval");
+  spec.output.checkpoint_interval = deck.real("output/checkpoint interval");
+  const dem::Index n = spec.particles.size();
+  for (const auto &item : items(deck.text("output/track particles")))
+    spec.tracked.push_back(parse_index(deck, "output/track particles", item, n));
+  for (const auto &item : items(deck.text("output/track pairs")))
+  {
+    const auto dash = item.find('-');
+    if (dash == std::string::npos)
+      deck.fail("output/track pairs", "expected items of the form i-j, found '" + item + "'");
+    dem::Index i = parse_index(deck, "output/track pairs", item.substr(0, dash), n);
+    dem::Index j = parse_index(deck, "output/track pairs", item.substr(dash + 1), n);
+    if (i == j)
+      deck.fail("output/track pairs", "expected two different balls in '" + item + "'");
+    spec.tracked_pairs.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  return spec;
+}
+
+SceneResult run_scene(const SceneSpec &spec, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  dem::ParticleStore particles = spec.particles;
+  spec.rate.scale_ball_stiffness(particles);
+  SceneResult result;
+  result.sim = std::make_unique<dem::Simulation>(std::move(particles), spec.walls, spec.law.make(spec.rate),
+                                                 spec.motion);
+  dem::Simulation &sim = *result.sim;
+  result.bonds = install_bonds(spec, sim);
+  spec.bonds.finish(sim.contacts(), sim.particles(), spec.rate);
+
+  result.series = Series(series_columns(sim.walls()));
+  result.particles = Series({"time_s", "particle", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps",
+                             "wx_radps", "wy_radps", "wz_radps", "fx_n", "fy_n", "fz_n"});
+  result.contacts = Series({"time_s", "first", "second", "overlap_m", "normal_force_n", "shear_force_n",
+                            "shear_x_n", "shear_y_n", "shear_z_n", "bonded", "touching"});
+  const std::string convention = "demvv scene '" + spec.deck.name + "': SI units, compression positive";
+  RunFiles files(options, spec.deck, threads, static_cast<long long>(spec.bonds.settings.seed), convention,
+                 spec.output.paraview);
+  SceneProtocol protocol(spec, result);
+  result.status = run_dem(sim, protocol, files, spec.output, options).status;
   return result;
 }
+
+SceneResult run_scene(const Deck &deck, const RunOptions &options) { return run_scene(parse_scene(deck), options); }
 } // namespace verify

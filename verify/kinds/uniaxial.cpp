@@ -75,6 +75,7 @@ void declare_uniaxial(DeckSchema &s)
   s.real("strain interval", 1e-4, 0, 1, "-", "Axial strain between output rows.", true);
   s.flag("paraview", false, "Write ParaView files (particles, contact forces, broken bonds) to paraview/.");
   s.real("paraview strain interval", 0.005, 0, 1, "-", "Axial strain between ParaView frames.", true);
+  declare_checkpoint_interval(s);
   s.leave();
 }
 
@@ -145,286 +146,340 @@ struct Setup
   RateScaling rate;
 };
 
-/// The rate scaling of a test on a sample of the given height.
-RateScaling uniaxial_rate(const Deck &deck, double height)
+/// The run strain rate of a test on a sample of the given height [1/s].
+double run_strain_rate(const UniaxialSpec &spec, double height)
 {
-  const bool by_speed = deck.text("loading/control") == "platen speed";
-  return read_rate(deck, by_speed ? deck.real("loading/platen speed") / height : deck.real("loading/strain rate"));
+  return spec.by_platen_speed ? spec.platen_speed / height : spec.strain_rate;
 }
 
-Setup lattice_setup(const Deck &deck)
+Setup lattice_setup(const UniaxialSpec &spec)
 {
-  dem::Lattice lattice;
-  dem::parse_lattice(deck.text("sample/lattice"), lattice);
-  dem::BallSpec ball;
-  apply_ball_properties(deck, ball);
-  dem::Specimen specimen =
-    dem::lattice_specimen(lattice, deck.real("sample/ball radius"), deck.real("sample/diameter"),
-                          deck.real("sample/height"), ball, read_wall_properties(deck, "platens"), {}, false);
+  const dem::BallSpec ball = spec.balls;
+  dem::Specimen specimen = dem::lattice_specimen(spec.lattice, spec.ball_radius, spec.diameter, spec.height, ball,
+                                                 spec.platens, {}, false);
   if (specimen.particles.size() < 2)
-    deck.fail("sample/diameter", "the sample holds fewer than two balls of the given radius: expected a "
-                                 "diameter and height of several ball diameters");
+    spec.deck.fail("sample/diameter", format_number(spec.diameter),
+                   "the sample holds fewer than two balls of the given radius: expected a diameter and height of "
+                   "several ball diameters");
   Setup s;
-  s.rate = uniaxial_rate(deck, specimen.height);
+  s.rate = spec.rate.scaling(run_strain_rate(spec, specimen.height));
   s.rate.scale_ball_stiffness(specimen.particles);
   s.sim = std::make_unique<dem::Simulation>(std::move(specimen.particles), std::move(specimen.walls),
-                                            read_contact_law(deck, s.rate), read_motion(deck));
+                                            spec.law.make(s.rate), spec.motion);
   s.cell = std::move(specimen);
   s.sim->refresh_contacts();
-  if (deck.text("bonds/install") == "touching")
-    s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), read_bond_settings(deck));
-  else if (deck.text("bonds/install") == "sample")
-    deck.fail("bonds/install", "a lattice sample has no bonds of its own: expected touching or none");
-  finish_bonds(deck, s.sim->contacts(), s.sim->particles(), s.rate);
+  if (spec.bonds.install == "touching")
+    s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), spec.bonds.settings);
+  spec.bonds.finish(s.sim->contacts(), s.sim->particles(), s.rate);
   return s;
 }
 
-/// A prepared sample: its balls get the deck's properties, its platens the
-/// deck's platen properties, its lateral wall (if still there) goes, and the
-/// clock restarts at zero for the new test.
-Setup sample_setup(const Deck &deck)
+/// A prepared sample with the deck's properties; its bonds are kept
+/// (install = sample), replaced (touching) or removed (none).
+Setup sample_setup(const UniaxialSpec &spec)
 {
-  if (deck.text("sample/file").empty())
-    deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
-  SampleFile file = load_or_prepare_sample(deck.file("sample/file"), "runs/samples");
-  dem::Snapshot &snap = file.snapshot;
+  SampleFile file = load_or_prepare_sample(spec.sample_file, "runs/samples");
   Setup s;
-  s.rate = uniaxial_rate(deck, file.cell.height);
-  dem::BallSpec ball;
-  apply_ball_properties(deck, ball, s.rate);
-  apply_test_properties(file, ball, read_wall_properties(deck, "platens"));
-
-  s.sim = std::make_unique<dem::Simulation>(std::move(snap), read_contact_law(deck, s.rate), read_motion(deck));
-  if (file.cell.lateral >= 0 && s.sim->walls()[file.cell.lateral].enabled)
-    s.sim->set_wall_enabled(file.cell.lateral, false);
-  const std::string mode = deck.text("bonds/install");
-  if (mode != "sample")
+  s.rate = spec.rate.scaling(run_strain_rate(spec, file.cell.height));
+  const nlohmann::json preparation = file.preparation;
+  TestSample sample =
+    open_test_sample(std::move(file), scaled(spec.balls, s.rate), spec.platens, spec.law.make(s.rate), spec.motion);
+  s.sim = std::move(sample.sim);
+  if (spec.bonds.install != "sample")
   {
     for (dem::Contact &c : s.sim->contacts().entries())
       c.bond = dem::ContactBond{};
-    if (mode == "touching")
-      s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), read_bond_settings(deck));
+    if (spec.bonds.install == "touching")
+      s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), spec.bonds.settings);
   }
   else
     for (const dem::Contact &c : s.sim->contacts().entries())
       s.bonds.bonded += c.bond.intact ? 1 : 0;
-  finish_bonds(deck, s.sim->contacts(), s.sim->particles(), s.rate);
-  s.cell = std::move(file.cell);
+  spec.bonds.finish(s.sim->contacts(), s.sim->particles(), s.rate);
+  s.cell = std::move(sample.cell);
   std::ostringstream d;
-  d << "prepared sample " << deck.text("sample/file") << " of " << s.sim->particles().size() << " balls";
-  if (file.preparation.contains("solid_fraction_cell"))
-    d << " (cell solid fraction " << file.preparation["solid_fraction_cell"].get<double>() << ", coordination "
-      << file.preparation["coordination_number"].get<double>() << ")";
+  d << "prepared sample " << spec.sample_file << " of " << s.sim->particles().size() << " balls";
+  if (preparation.contains("solid_fraction_cell"))
+    d << " (cell solid fraction " << preparation["solid_fraction_cell"].get<double>() << ", coordination "
+      << preparation["coordination_number"].get<double>() << ")";
   s.cell.description = d.str();
   return s;
 }
+
+/// A uniaxial test as the DEM driver runs it: the platens move (thesis
+/// §6.1), rows record stress, strains, breakage, structure and energies.
+class UniaxialProtocol final : public DemProtocol
+{
+public:
+  UniaxialProtocol(const UniaxialSpec &spec, const Setup &setup, const dem::Simulation &sim, Series &series)
+    : spec_(spec), cell_(setup.cell), bonds_(setup.bonds), rate_(setup.rate), series_(series),
+      test_(sim, setup.cell.bottom, setup.cell.top, setup.cell.area(), loading(spec)),
+      gauges_(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, spec.gauge_thickness),
+      circumference_(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, 1.0 + 1e-9),
+      spheres_{{dem::Vec3(0, 0, setup.cell.height / 3), spec.sphere_radius * setup.cell.diameter},
+               {dem::Vec3(0, 0, 2 * setup.cell.height / 3), spec.sphere_radius * setup.cell.diameter}},
+      strain_rate_(test_.final_speed() / setup.cell.height)
+  {
+    // Gauge-thickness study (thesis §5.4.3, Fig. 5.13): the same measure
+    // with bands of other thicknesses, against all balls on the circumference.
+    for (double t : spec.gauge_study)
+      study_gauges_.emplace_back(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, t);
+    std::vector<std::string> columns = series_columns;
+    if (!spec.gauge_study.empty())
+    {
+      for (double t : spec.gauge_study)
+        columns.push_back("radial_strain_gauge_" + num_text(t));
+      columns.push_back("radial_strain_circumference");
+    }
+    series_ = Series(columns);
+  }
+
+  static dem::UniaxialSettings loading(const UniaxialSpec &spec)
+  {
+    dem::UniaxialSettings load;
+    load.platen_speed = spec.by_platen_speed ? spec.platen_speed : 0;
+    load.strain_rate = spec.strain_rate;
+    load.ramp_time = spec.ramp_time;
+    load.final_strain = spec.final_strain;
+    load.both_platens = spec.both_platens;
+    return load;
+  }
+
+  std::string convention() const
+  {
+    return "demvv uniaxial '" + spec_.deck.name +
+           "': SI units; compression positive for axial stress and strain; radial strain = -(r - r0)/r0; "
+           "sample: " + cell_.description;
+  }
+
+  std::string label() const override { return "uniaxial " + spec_.deck.name; }
+  std::string clock_name() const override { return "axial_strain"; }
+  double clock(const dem::Simulation &sim) const override { return test_.axial_strain(sim); }
+  double fraction_done(const dem::Simulation &sim) const override
+  {
+    return test_.axial_strain(sim) / spec_.final_strain;
+  }
+  bool finished(const dem::Simulation &sim) const override { return test_.finished(sim); }
+  std::string state_text(const dem::Simulation &sim) const override
+  {
+    char text[96];
+    std::snprintf(text, sizeof text, "strain %.4f, stress %.4g MPa", test_.axial_strain(sim),
+                  0.5e-6 * (test_.stress_top(sim) + test_.stress_bottom(sim)));
+    return text;
+  }
+
+  void before_forces(dem::Simulation &sim) override { test_.before_forces(sim); }
+
+  void measure(const dem::Simulation &sim) override
+  {
+    const double s_top = test_.stress_top(sim), s_bottom = test_.stress_bottom(sim);
+    const double stress = 0.5 * (s_top + s_bottom);
+    const double broken_t = double(sim.bonds_broken(dem::BreakMode::tension));
+    const double broken_s = double(sim.bonds_broken(dem::BreakMode::shear));
+    const double broken_d = double(sim.bonds_broken(dem::BreakMode::displacement));
+    const double porosity = 0.5 * (dem::porosity(sim.particles(), sim.contacts(), spheres_[0]) +
+                                   dem::porosity(sim.particles(), sim.contacts(), spheres_[1]));
+    const double sphere_coordination = 0.5 * (dem::coordination_number(sim.particles(), sim.contacts(), spheres_[0]) +
+                                              dem::coordination_number(sim.particles(), sim.contacts(), spheres_[1]));
+    // Inertial number I = strain rate * d * sqrt(rho / p), p = sigma/3
+    // for uniaxial stress; quasi-static when I << 1e-3.
+    const double inertial =
+      stress > 0 ? strain_rate_ * 2 * spec_.ball_radius * std::sqrt(spec_.balls.density / (stress / 3)) : 0.0;
+    const double installed = static_cast<double>(std::max<std::size_t>(bonds_.bonded, 1));
+    row_ = {sim.time(), test_.axial_strain(sim), stress, s_top, s_bottom, gauges_.radial_strain(sim.particles()),
+            (broken_t + broken_s + broken_d) / installed, broken_t, broken_s, broken_d,
+            dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination, porosity,
+            dem::unbalanced_force_ratio(sim.particles(), sim.contacts()), inertial, sim.time_step()};
+    if (!spec_.gauge_study.empty())
+    {
+      for (const dem::RadialGauges &g : study_gauges_)
+        row_.push_back(g.radial_strain(sim.particles()));
+      row_.push_back(circumference_.radial_strain(sim.particles()));
+    }
+  }
+
+  void record(const dem::Simulation &sim) override
+  {
+    const dem::EnergyLedger e = sim.energy();
+    row_.insert(row_.begin() + static_cast<std::ptrdiff_t>(series_columns.size()) - 7,
+                {e.kinetic, e.strain, e.friction, e.damping, e.bond_released, e.boundary_work, e.residual()});
+    series_.add(std::move(row_));
+    row_.clear();
+  }
+
+  std::vector<SeriesFile> series_files() override { return {{&series_, "series.csv", convention()}}; }
+
+  nlohmann::json summary(const dem::Simulation &sim, const RunStatus &status, const ContactResolution &resolution,
+                         const RunDirectory *dir) const override
+  {
+    const auto eps = series_.column("axial_strain");
+    const auto sig = series_.column("axial_stress_pa");
+    const auto rad = series_.column("radial_strain");
+    const auto broken = series_.column("bonds_broken_fraction");
+    const auto [modulus, poisson] = fit_elastic(eps, sig, rad, spec_.fit_from, spec_.fit_to);
+    const Peak pk = peak(eps, sig);
+    double break_strain = 0, break_rate = 0;
+    const bool has_breaks = x_at_max_rate(eps, broken, break_strain, break_rate) && break_rate > 0;
+    const dem::EnergyLedger e = sim.energy();
+    const dem::Index n = sim.particles().size();
+
+    // Rate scaling and whether the quasi-static assumption held (rows past
+    // 10 % of the final strain: the start-up is excluded).
+    const double settled = 0.1 * spec_.final_strain;
+    nlohmann::json rate = rate_.to_json();
+    rate["quasi_static_indicators"] = {
+      {"from_axial_strain", settled},
+      {"max_inertial_number", max_after(series_, settled, "inertial_number")},
+      {"max_unbalanced_force_ratio", max_after(series_, settled, "unbalanced_force_ratio")},
+      {"max_kinetic_to_strain_energy", max_after(series_, settled, "kinetic_energy_j", "strain_energy_j")},
+      {"note", "quasi-static when the inertial number stays well below 1e-3 and the kinetic energy is a small "
+               "fraction of the stored energy"}};
+    nlohmann::json resolved = resolution.to_json();
+    resolved.erase("warning");
+    resolved["quasi_static_note"] = "a quasi-static test need not resolve contact oscillations (see the "
+                                      "quasi-static indicators); no warning is given here";
+    nlohmann::json summary = {
+      {"kind", "uniaxial"},
+      {"title", spec_.title},
+      {"sample", {{"description", cell_.description},
+                  {"particles", n},
+                  {"diameter_m", cell_.diameter},
+                  {"height_m", cell_.height},
+                  {"area_m2", cell_.area()},
+                  {"radial_gauges", gauges_.size()},
+                  {"measurement_sphere_radius_m", spec_.sphere_radius * cell_.diameter}}},
+      {"contact_law", std::string(sim.model().name())},
+      {"loading", {{"platen_speed_mps", test_.final_speed()},
+                   {"strain_rate_per_s", strain_rate_},
+                   {"ramp_time_s", spec_.ramp_time},
+                   {"final_strain", spec_.final_strain},
+                   {"moving_platens", spec_.both_platens ? "both" : "top"}}},
+      {"rate", rate},
+      {"peak_stress_pa", pk.value},
+      {"strain_at_peak", pk.at},
+      {"strain_at_max_breakage_rate", has_breaks ? nlohmann::json(break_strain) : nlohmann::json(nullptr)},
+      {"max_breakage_rate_per_unit_strain", has_breaks ? nlohmann::json(break_rate) : nlohmann::json(nullptr)},
+      {"initial_modulus_pa", modulus.points >= 2 ? nlohmann::json(modulus.slope) : nlohmann::json(nullptr)},
+      {"poisson_ratio", poisson.points >= 2 ? nlohmann::json(poisson.slope) : nlohmann::json(nullptr)},
+      {"fit_window_axial_strain", {spec_.fit_from, spec_.fit_to}},
+      {"fit_points", modulus.points},
+      {"fit_r_squared", {{"modulus", modulus.r_squared}, {"poisson", poisson.r_squared}}},
+      {"bonds", {{"installed", bonds_.bonded},
+                 {"removed", bonds_.removed},
+                 {"truncated_strength_draws", bonds_.truncated_draws},
+                 {"mean_normal_strength_n", bonds_.mean_normal_strength},
+                 {"mean_shear_strength_n", bonds_.mean_shear_strength},
+                 {"broken_tension", sim.bonds_broken(dem::BreakMode::tension)},
+                 {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)},
+                 {"broken_displacement", sim.bonds_broken(dem::BreakMode::displacement)}}},
+      {"coordination_number_at_end", dem::coordination_number(sim.particles(), sim.contacts())},
+      {"steps", sim.steps()},
+      {"last_time_step_s", sim.time_step()},
+      {"critical_time_step_bound_s", sim.critical_time_step()},
+      {"contact_resolution", resolved},
+      {"neighbour_rebuilds", sim.neighbors().rebuilds()},
+      {"energy_j", {{"kinetic", e.kinetic}, {"strain", e.strain}, {"friction", e.friction},
+                    {"damping", e.damping}, {"bond_released", e.bond_released},
+                    {"boundary_work", e.boundary_work}, {"residual", e.residual()}}},
+      {"wall_seconds", status.wall_seconds},
+      {"particle_steps_per_second", status.wall_seconds > 0 ? double(n) * sim.steps() / status.wall_seconds : 0.0}};
+    if (dir && !spec_.gauge_study.empty() && series_.rows() > 0)
+      write_gauge_study(dir->path("gauge_study.csv"), series_, spec_.gauge_study, study_gauges_, convention());
+    return summary;
+  }
+
+private:
+  const UniaxialSpec &spec_;
+  const dem::Specimen &cell_;
+  const dem::BondReport &bonds_;
+  const RateScaling &rate_;
+  Series &series_;
+  dem::UniaxialCompression test_;
+  dem::RadialGauges gauges_, circumference_;
+  std::vector<dem::RadialGauges> study_gauges_;
+  dem::MeasurementSphere spheres_[2];
+  double strain_rate_;
+  std::vector<double> row_;
+};
 } // namespace
+
+TestSample open_test_sample(SampleFile file, const dem::BallSpec &ball, const dem::WallProps &platens,
+                            std::unique_ptr<dem::ContactModel> law, const dem::SimulationSettings &motion)
+{
+  apply_test_properties(file, ball, platens);
+  TestSample t;
+  t.sim = std::make_unique<dem::Simulation>(std::move(file.snapshot), std::move(law), motion);
+  if (file.cell.lateral >= 0 && t.sim->walls()[file.cell.lateral].enabled)
+    t.sim->set_wall_enabled(file.cell.lateral, false);
+  t.cell = std::move(file.cell);
+  return t;
+}
+
+UniaxialSpec parse_uniaxial(const Deck &deck)
+{
+  UniaxialSpec spec;
+  spec.deck = DeckRecord(deck);
+  spec.title = deck.text("title");
+  spec.from_file = deck.text("sample/source") == "file";
+  if (spec.from_file)
+  {
+    if (deck.text("sample/file").empty())
+      deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
+    spec.sample_file = deck.file("sample/file");
+  }
+  dem::parse_lattice(deck.text("sample/lattice"), spec.lattice);
+  spec.ball_radius = deck.real("sample/ball radius");
+  spec.diameter = deck.real("sample/diameter");
+  spec.height = deck.real("sample/height");
+  spec.balls = parse_ball_properties(deck);
+  spec.law = LawSpec::parse(deck);
+  spec.bonds = BondSpec::parse(deck);
+  if (!spec.from_file && spec.bonds.install == "sample")
+    deck.fail("bonds/install", "a lattice sample has no bonds of its own: expected touching or none");
+  spec.platens = parse_wall_properties(deck, "platens");
+  spec.by_platen_speed = deck.text("loading/control") == "platen speed";
+  spec.platen_speed = deck.real("loading/platen speed");
+  spec.strain_rate = deck.real("loading/strain rate");
+  spec.ramp_time = deck.real("loading/ramp time");
+  spec.final_strain = deck.real("loading/final strain");
+  spec.both_platens = deck.text("loading/moving platens") == "both";
+  spec.rate = RateSpec::parse(deck);
+  spec.motion = parse_motion(deck);
+  spec.gauge_thickness = deck.real("measurement/gauge thickness");
+  spec.sphere_radius = deck.real("measurement/sphere radius");
+  spec.gauge_study = deck.real_list("measurement/gauge study");
+  for (double t : spec.gauge_study)
+    if (!(t > 0 && t <= 1))
+      deck.fail("measurement/gauge study", "expected thicknesses in (0, 1]");
+  const std::vector<double> window = deck.real_list("measurement/fit window");
+  spec.fit_from = window[0];
+  spec.fit_to = window[1];
+  if (!(spec.fit_to > spec.fit_from))
+    deck.fail("measurement/fit window", "expected two increasing strains");
+  spec.output.interval = deck.real("output/strain interval");
+  spec.output.paraview = deck.flag("output/paraview");
+  spec.output.paraview_interval = deck.real("output/paraview strain interval");
+  spec.output.checkpoint_interval = deck.real("output/checkpoint interval");
+  return spec;
+}
+
+UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options)
+{
+  const int threads = apply_threads(options);
+  Setup setup = spec.from_file ? sample_setup(spec) : lattice_setup(spec);
+  UniaxialResult result;
+  result.sim = std::move(setup.sim);
+  UniaxialProtocol protocol(spec, setup, *result.sim, result.series);
+  RunFiles files(options, spec.deck, threads, static_cast<long long>(spec.bonds.settings.seed),
+                 protocol.convention(), spec.output.paraview);
+  DemOutcome outcome = run_dem(*result.sim, protocol, files, spec.output, options);
+  result.status = outcome.status;
+  result.summary = std::move(outcome.summary);
+  return result;
+}
 
 UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options)
 {
-  const int threads = apply_threads(options);
-  const double window_lo = deck.real_list("measurement/fit window")[0];
-  const double window_hi = deck.real_list("measurement/fit window")[1];
-  if (!(window_hi > window_lo))
-    deck.fail("measurement/fit window", "expected two increasing strains");
-  Setup setup = deck.text("sample/source") == "file" ? sample_setup(deck) : lattice_setup(deck);
-
-  UniaxialResult result;
-  const dem::Specimen &specimen = setup.cell;
-  const double area = specimen.area(), height0 = specimen.height, diameter = specimen.diameter;
-  const dem::WallIndex bottom = specimen.bottom, top = specimen.top;
-  result.sim = std::move(setup.sim);
-  dem::Simulation &sim = *result.sim;
-  const dem::BondReport &bonds = setup.bonds;
-  const RateScaling setup_rate = setup.rate;
-
-  dem::UniaxialSettings load;
-  load.platen_speed = deck.text("loading/control") == "platen speed" ? deck.real("loading/platen speed") : 0;
-  load.strain_rate = deck.real("loading/strain rate");
-  load.ramp_time = deck.real("loading/ramp time");
-  load.final_strain = deck.real("loading/final strain");
-  load.both_platens = deck.text("loading/moving platens") == "both";
-  const dem::UniaxialCompression test(sim, bottom, top, area, load);
-  const dem::RadialGauges gauges(sim.particles(), dem::Vec3::Zero(), 0.5 * height0, height0,
-                                 deck.real("measurement/gauge thickness"));
-  // Gauge-thickness study (thesis §5.4.3, Fig. 5.13): the same measure with
-  // bands of other thicknesses, against all balls on the circumference.
-  const std::vector<double> study = deck.real_list("measurement/gauge study");
-  for (double t : study)
-    if (!(t > 0 && t <= 1))
-      deck.fail("measurement/gauge study", "expected thicknesses in (0, 1]");
-  std::vector<dem::RadialGauges> study_gauges;
-  for (double t : study)
-    study_gauges.emplace_back(sim.particles(), dem::Vec3::Zero(), 0.5 * height0, height0, t);
-  const dem::RadialGauges circumference(sim.particles(), dem::Vec3::Zero(), 0.5 * height0, height0, 1.0 + 1e-9);
-  const double sphere_r = deck.real("measurement/sphere radius") * diameter;
-  const dem::MeasurementSphere spheres[2] = {{dem::Vec3(0, 0, height0 / 3), sphere_r},
-                                             {dem::Vec3(0, 0, 2 * height0 / 3), sphere_r}};
-  const double mean_radius = deck.real("sample/ball radius");
-  const double density = deck.real("balls/density");
-  const double strain_rate = test.final_speed() / height0;
-
-  std::vector<std::string> columns = series_columns;
-  if (!study.empty())
-  {
-    for (double t : study)
-      columns.push_back("radial_strain_gauge_" + num_text(t));
-    columns.push_back("radial_strain_circumference");
-  }
-  result.series = Series(columns);
-  const std::string convention =
-    "demvv uniaxial '" + deck.name() + "': SI units; compression positive for axial stress and strain; "
-    "radial strain = -(r - r0)/r0; sample: " + specimen.description;
-  RunFiles files(options, deck, threads, deck.integer("bonds/seed"), convention, deck.flag("output/paraview"));
-  RunDirectory *dir = files.directory();
-  ParaviewWriter *paraview = files.paraview();
-  if (dir)
-    result.series.stream_to(dir->path("series.csv"), convention);
-
-  const double strain_interval = deck.real("output/strain interval");
-  const double frame_interval = deck.real("output/paraview strain interval");
-  double next_row = 0, next_frame = 0;
-  Progress progress("uniaxial " + deck.name());
-  const auto start = std::chrono::steady_clock::now();
-  const auto installed = static_cast<double>(std::max<std::size_t>(bonds.bonded, 1));
-  std::vector<double> row;
-
-  try
-  {
-    for (;;)
-    {
-      test.drive(sim);
-      sim.compute_forces();
-      files.drain_breaks(sim);
-
-      const double strain = test.axial_strain(sim);
-      const bool last = test.finished(sim);
-      const bool due = last || strain >= next_row;
-      if (due)
-      {
-        const double s_top = test.stress_top(sim), s_bottom = test.stress_bottom(sim);
-        const double stress = 0.5 * (s_top + s_bottom);
-        const double broken_t = double(sim.bonds_broken(dem::BreakMode::tension));
-        const double broken_s = double(sim.bonds_broken(dem::BreakMode::shear));
-        const double broken_d = double(sim.bonds_broken(dem::BreakMode::displacement));
-        const double porosity = 0.5 * (dem::porosity(sim.particles(), sim.contacts(), spheres[0]) +
-                                       dem::porosity(sim.particles(), sim.contacts(), spheres[1]));
-        const double sphere_coordination =
-          0.5 * (dem::coordination_number(sim.particles(), sim.contacts(), spheres[0]) +
-                 dem::coordination_number(sim.particles(), sim.contacts(), spheres[1]));
-        // Inertial number I = strain rate * d * sqrt(rho / p), p = sigma/3
-        // for uniaxial stress; quasi-static when I << 1e-3.
-        const double inertial = stress > 0 ? strain_rate * 2 * mean_radius * std::sqrt(density / (stress / 3)) : 0.0;
-        row = {sim.time(), strain, stress, s_top, s_bottom, gauges.radial_strain(sim.particles()),
-               (broken_t + broken_s + broken_d) / installed, broken_t, broken_s, broken_d,
-               dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination, porosity,
-               dem::unbalanced_force_ratio(sim.particles(), sim.contacts()), inertial, sim.time_step()};
-        if (!study.empty())
-        {
-          for (const dem::RadialGauges &g : study_gauges)
-            row.push_back(g.radial_strain(sim.particles()));
-          row.push_back(circumference.radial_strain(sim.particles()));
-        }
-        next_row = strain + strain_interval;
-        if (paraview && (last || strain >= next_frame))
-        {
-          paraview->write_frame(sim, sim.time());
-          next_frame = strain + frame_interval;
-        }
-      }
-      sim.integrate(due);
-      if (due)
-      {
-        const dem::EnergyLedger e = sim.energy();
-        row.insert(row.begin() + static_cast<std::ptrdiff_t>(series_columns.size()) - 7,
-                   {e.kinetic, e.strain, e.friction, e.damping, e.bond_released, e.boundary_work, e.residual()});
-        result.series.add(row);
-      }
-      if (last)
-        break;
-      progress.update(strain / load.final_strain, "strain " + std::to_string(strain));
-    }
-  }
-  catch (const dem::NumericalFault &f)
-  {
-    record_fault(result.status, f);
-  }
-  progress.finish();
-  result.status.steps = sim.steps();
-  result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  const auto eps = result.series.column("axial_strain");
-  const auto sig = result.series.column("axial_stress_pa");
-  const auto rad = result.series.column("radial_strain");
-  const auto broken = result.series.column("bonds_broken_fraction");
-  const auto [modulus, poisson] = fit_elastic(eps, sig, rad, window_lo, window_hi);
-  const Peak pk = peak(eps, sig);
-  double break_strain = 0, break_rate = 0;
-  const bool has_breaks = x_at_max_rate(eps, broken, break_strain, break_rate) && break_rate > 0;
-  const dem::EnergyLedger e = sim.energy();
-  const dem::Index n = sim.particles().size();
-
-  // Rate scaling and whether the quasi-static assumption held (rows past
-  // 10 % of the final strain: the start-up is excluded).
-  const double settled = 0.1 * load.final_strain;
-  nlohmann::json rate = setup_rate.to_json();
-  rate["quasi_static_indicators"] = {
-    {"from_axial_strain", settled},
-    {"max_inertial_number", max_after(result.series, settled, "inertial_number")},
-    {"max_unbalanced_force_ratio", max_after(result.series, settled, "unbalanced_force_ratio")},
-    {"max_kinetic_to_strain_energy", max_after(result.series, settled, "kinetic_energy_j", "strain_energy_j")},
-    {"note", "quasi-static when the inertial number stays well below 1e-3 and the kinetic energy is a small "
-             "fraction of the stored energy"}};
-  result.summary = {
-    {"kind", "uniaxial"},
-    {"title", deck.text("title")},
-    {"status", result.status.to_json()},
-    {"sample", {{"description", specimen.description},
-                {"particles", n},
-                {"diameter_m", diameter},
-                {"height_m", height0},
-                {"area_m2", area},
-                {"radial_gauges", gauges.size()},
-                {"measurement_sphere_radius_m", sphere_r}}},
-    {"contact_law", std::string(sim.model().name())},
-    {"loading", {{"platen_speed_mps", test.final_speed()},
-                 {"strain_rate_per_s", strain_rate},
-                 {"ramp_time_s", load.ramp_time},
-                 {"final_strain", load.final_strain},
-                 {"moving_platens", load.both_platens ? "both" : "top"}}},
-    {"rate", rate},
-    {"peak_stress_pa", pk.value},
-    {"strain_at_peak", pk.at},
-    {"strain_at_max_breakage_rate", has_breaks ? nlohmann::json(break_strain) : nlohmann::json(nullptr)},
-    {"max_breakage_rate_per_unit_strain", has_breaks ? nlohmann::json(break_rate) : nlohmann::json(nullptr)},
-    {"initial_modulus_pa", modulus.points >= 2 ? nlohmann::json(modulus.slope) : nlohmann::json(nullptr)},
-    {"poisson_ratio", poisson.points >= 2 ? nlohmann::json(poisson.slope) : nlohmann::json(nullptr)},
-    {"fit_window_axial_strain", {window_lo, window_hi}},
-    {"fit_points", modulus.points},
-    {"fit_r_squared", {{"modulus", modulus.r_squared}, {"poisson", poisson.r_squared}}},
-    {"bonds", {{"installed", bonds.bonded},
-               {"removed", bonds.removed},
-               {"truncated_strength_draws", bonds.truncated_draws},
-               {"mean_normal_strength_n", bonds.mean_normal_strength},
-               {"mean_shear_strength_n", bonds.mean_shear_strength},
-               {"broken_tension", sim.bonds_broken(dem::BreakMode::tension)},
-               {"broken_shear", sim.bonds_broken(dem::BreakMode::shear)},
-               {"broken_displacement", sim.bonds_broken(dem::BreakMode::displacement)}}},
-    {"coordination_number_at_end", dem::coordination_number(sim.particles(), sim.contacts())},
-    {"steps", sim.steps()},
-    {"last_time_step_s", sim.time_step()},
-    {"critical_time_step_bound_s", sim.critical_time_step()},
-    {"neighbour_rebuilds", sim.neighbors().rebuilds()},
-    {"energy_j", {{"kinetic", e.kinetic}, {"strain", e.strain}, {"friction", e.friction},
-                  {"damping", e.damping}, {"bond_released", e.bond_released},
-                  {"boundary_work", e.boundary_work}, {"residual", e.residual()}}},
-    {"wall_seconds", result.status.wall_seconds},
-    {"particle_steps_per_second",
-     result.status.wall_seconds > 0 ? double(n) * sim.steps() / result.status.wall_seconds : 0.0}};
-  if (dir && !study.empty() && result.series.rows() > 0)
-    write_gauge_study(dir->path("gauge_study.csv"), result.series, study, study_gauges, convention);
-  if (dir)
-    dir->write_summary(result.summary);
-  return result;
+  return run_uniaxial(parse_uniaxial(deck), options);
 }
 } // namespace verify

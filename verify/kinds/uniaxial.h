@@ -1,23 +1,29 @@
 // Uniaxial decks: constant-strain-rate compression of a bonded cylinder
-// between frictionless platens (thesis §6.1-6.3, SPEC §5).
+// between frictionless platens (thesis §6.1-6.3).
 //
-// Until sample preparation lands (thesis ch. 5) the sample is a regular
-// lattice cylinder (simple cubic or FCC), a legitimate verification sample
-// with closed-form porosity and coordination; every output says so.
+// The sample is a prepared packing (thesis ch. 5: a sample file, or a
+// prepare deck whose sample is prepared once and cached), or a regular
+// lattice cylinder (simple cubic or FCC), a verification sample with
+// closed-form porosity and coordination; every output says which.
 //
 // Outputs: series.csv (time, axial strain, nominal stress top/bottom/mean,
 // radial strain, bond breakage, coordination, porosity, unbalanced force,
-// inertial number, energies), summary.json (peak stress, strain at peak,
-// strain at the maximum breakage rate, initial modulus and Poisson's ratio
-// fitted over the stated strain window, counts, timings, provenance),
-// bond_breaks.csv, deck.prm and optional ParaView frames.
+// inertial number, energies; a row every `output/strain interval` of axial
+// strain), summary.json (peak stress, strain at peak, strain at the maximum
+// breakage rate, initial modulus and Poisson's ratio fitted over the stated
+// strain window, counts, timings, provenance), bond_breaks.csv, deck.prm
+// and optional ParaView frames.
 #pragma once
 
 #include "verify/decks/deck.h"
-#include "verify/run/run.h"
+#include "verify/decks/deck_sections.h"
+#include "verify/io/sample_file.h"
 #include "verify/io/series.h"
+#include "verify/run/dem_driver.h"
+#include "verify/run/run.h"
 
 #include "dem/bonds.h"
+#include "dem/sample_lattice.h"
 #include "dem/simulation.h"
 
 #include <nlohmann/json.hpp>
@@ -28,6 +34,41 @@ namespace verify
 {
 void declare_uniaxial(DeckSchema &s);
 
+/// A uniaxial deck, parsed and validated.
+struct UniaxialSpec
+{
+  DeckRecord deck;
+  std::string title;
+  // sample
+  bool from_file = false;        ///< a prepared sample (else a lattice)
+  std::string sample_file;       ///< resolved against the deck
+  dem::Lattice lattice = dem::Lattice::face_centred_cubic;
+  double ball_radius = 0;        ///< m
+  double diameter = 0, height = 0; ///< m, lattice target size
+  // contacts
+  dem::BallSpec balls;           ///< as written (not yet rate-scaled)
+  LawSpec law;
+  BondSpec bonds;
+  dem::WallProps platens;
+  // loading
+  bool by_platen_speed = true;
+  double platen_speed = 0;       ///< m/s
+  double strain_rate = 0;        ///< 1/s
+  double ramp_time = 0;          ///< s
+  double final_strain = 0;       ///< -
+  bool both_platens = false;
+  RateSpec rate;
+  dem::SimulationSettings motion;
+  // measurement
+  double gauge_thickness = 0;    ///< fraction of the height
+  double sphere_radius = 0;      ///< fraction of the diameter
+  std::vector<double> gauge_study;
+  double fit_from = 0, fit_to = 0; ///< axial strain window of the elastic fit
+  DemOutputSpec output;          ///< clock: axial strain [-]
+};
+
+UniaxialSpec parse_uniaxial(const Deck &deck);
+
 struct UniaxialResult
 {
   std::unique_ptr<dem::Simulation> sim;
@@ -36,5 +77,18 @@ struct UniaxialResult
   RunStatus status;
 };
 
+UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options);
+/// parse_uniaxial then run_uniaxial.
 UniaxialResult run_uniaxial(const Deck &deck, const RunOptions &options);
+
+/// A prepared sample made ready for a test: every ball gets `ball`'s
+/// properties and the platens `platens`, the lateral wall goes (thesis
+/// §5.3.4), the clock restarts at zero.  Uniaxial runs and the bench share it.
+struct TestSample
+{
+  std::unique_ptr<dem::Simulation> sim;
+  dem::Specimen cell;
+};
+TestSample open_test_sample(SampleFile file, const dem::BallSpec &ball, const dem::WallProps &platens,
+                            std::unique_ptr<dem::ContactModel> law, const dem::SimulationSettings &motion);
 } // namespace verify

@@ -5,15 +5,21 @@
 
 #include <omp.h>
 
+#include <csignal>
+#include <filesystem>
 #include <sstream>
 
 namespace verify
 {
 nlohmann::json RunStatus::to_json() const
 {
-  nlohmann::json j = {{"state", fault ? "numerical fault" : "completed"},
+  const char *state = fault ? "numerical fault" : interrupted_by ? "interrupted" : paused ? "paused" : "completed";
+  nlohmann::json j = {{"state", state},
+                      {"interrupted", interrupted_by != 0 || paused},
                       {"steps", steps},
                       {"wall_seconds", wall_seconds}};
+  if (interrupted_by)
+    j["signal"] = interrupted_by == SIGINT ? "SIGINT" : interrupted_by == SIGTERM ? "SIGTERM" : "signal";
   if (fault)
     j["fault"] = {{"step", step}, {"time_s", time}, {"particle", particle}, {"message", message}};
   return j;
@@ -29,6 +35,13 @@ std::string RunStatus::diagnostic() const
   return o.str();
 }
 
+int RunStatus::exit_code() const
+{
+  if (fault)
+    return 3;
+  return interrupted_by ? 128 + interrupted_by : 0;
+}
+
 void record_fault(RunStatus &status, const dem::NumericalFault &fault)
 {
   status.fault = true;
@@ -38,13 +51,13 @@ void record_fault(RunStatus &status, const dem::NumericalFault &fault)
   status.message = fault.what();
 }
 
-RunDirectory::RunDirectory(const std::string &dir, const Deck &deck, int threads, long long seed)
-  : dir_(dir)
+RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed)
+  : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_path_(deck.path.empty() ? "DECK" : deck.path)
 {
   make_directories(dir);
-  const std::string resolved = deck.resolved();
+  const std::string &resolved = deck.resolved;
   provenance_ = provenance(threads, seed, resolved);
-  provenance_["deck_file"] = deck.path();
+  provenance_["deck_file"] = deck.path;
   provenance_["resolved_deck"] = "deck.prm";
   write_atomically(path("deck.prm"), resolved);
   write_summary({{"status", {{"state", "running"}}}});
@@ -56,14 +69,16 @@ void RunDirectory::write_summary(nlohmann::json summary) const
   write_atomically(path("summary.json"), summary.dump(2) + "\n");
 }
 
-RunFiles::RunFiles(const RunOptions &options, const Deck &deck, int threads, long long seed,
+RunFiles::RunFiles(const RunOptions &options, const DeckRecord &deck, int threads, long long seed,
                    const std::string &convention, bool paraview)
 {
   if (options.out_dir.empty())
     return;
   dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed);
-  breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
-                                        std::vector<std::string>{"time_s", "first", "second", "mode"});
+  if (!options.resume)
+    breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"),
+                                          convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
+                                          std::vector<std::string>{"time_s", "first", "second", "mode"});
   if (paraview)
     paraview_ = std::make_unique<ParaviewWriter>(dir_->path("paraview"));
 }
@@ -80,6 +95,26 @@ void RunFiles::drain_breaks(dem::Simulation &sim)
       breaks_->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
   if (paraview_)
     paraview_->add_breaks(sim, breaks);
+}
+
+nlohmann::json RunFiles::checkpoint_state() const
+{
+  nlohmann::json state = nlohmann::json::object();
+  if (dir_)
+    state["bond_breaks_bytes"] = std::filesystem::file_size(dir_->path("bond_breaks.csv"));
+  if (paraview_)
+    state["paraview"] = paraview_->state();
+  return state;
+}
+
+void RunFiles::resume(const nlohmann::json &state)
+{
+  if (!dir_)
+    return;
+  breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), 4,
+                                        state.at("bond_breaks_bytes").get<std::uintmax_t>());
+  if (paraview_ && state.contains("paraview"))
+    paraview_->restore(state.at("paraview"));
 }
 
 int apply_threads(const RunOptions &options)

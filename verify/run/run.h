@@ -24,11 +24,15 @@ struct RunOptions
   std::string out_dir;   ///< empty: keep results in memory only
   int threads = 0;       ///< OpenMP threads (0: leave the default)
   bool progress = true;  ///< show progress on a terminal
+  bool resume = false;   ///< continue the run in out_dir from its checkpoint
+  long pause_after = 0;  ///< > 0: stop after this many steps as an interruption would (batch-queue jobs)
 };
 
 struct RunStatus
 {
   bool fault = false;
+  int interrupted_by = 0;  ///< the signal (SIGINT, SIGTERM) that stopped the run, 0 if none
+  bool paused = false;     ///< stopped by RunOptions::pause_after, checkpoint written
   long step = 0;           ///< fault step (or steps run)
   double time = 0;         ///< s
   dem::Index particle = -1;
@@ -39,19 +43,26 @@ struct RunStatus
   nlohmann::json to_json() const;
   /// One-line diagnostic for stderr.
   std::string diagnostic() const;
+  /// The exit code the command returns: 0, 3 (fault), 128 + signal.
+  int exit_code() const;
 };
 
 class RunDirectory
 {
 public:
   /// Creates the directory, writes deck.prm and a "running" summary.json.
-  RunDirectory(const std::string &dir, const Deck &deck, int threads, long long seed);
+  RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed);
   std::string path(const std::string &file) const { return dir_ + "/" + file; }
   /// Rewrites summary.json atomically; provenance is added.
   void write_summary(nlohmann::json summary) const;
+  /// Identifies the resolved deck (a resumed run must have the same).
+  const std::string &deck_hash() const { return deck_hash_; }
+  /// The deck file the run was started from ("" for a defaults deck).
+  const std::string &deck_path() const { return deck_path_; }
 
 private:
   std::string dir_;
+  std::string deck_hash_, deck_path_;
   nlohmann::json provenance_;
 };
 
@@ -64,7 +75,7 @@ class CsvSeries;
 class RunFiles
 {
 public:
-  RunFiles(const RunOptions &options, const Deck &deck, int threads, long long seed,
+  RunFiles(const RunOptions &options, const DeckRecord &deck, int threads, long long seed,
            const std::string &convention, bool paraview);
   ~RunFiles();
   RunDirectory *directory() { return dir_.get(); }
@@ -72,6 +83,11 @@ public:
   /// Takes the simulation's new bond breaks into bond_breaks.csv and the
   /// ParaView break log.
   void drain_breaks(dem::Simulation &sim);
+
+  /// What a checkpoint records of these files (bond_breaks.csv length,
+  /// ParaView state), and continuing from it.
+  nlohmann::json checkpoint_state() const;
+  void resume(const nlohmann::json &state);
 
 private:
   std::unique_ptr<RunDirectory> dir_;
