@@ -7,16 +7,21 @@
 // makes each check its own ctest test and a new row is a new test with no
 // edit here.  Each metric is asserted with its value, tolerance, class and
 // reason in the message, and its tolerance class must be one its row
-// declares; every declared class must be used, so a row lists exactly the
-// classes its check measures.
+// declares; every declared class must be used, so the catalogue
+// (docs/verification_catalogue.md) lists exactly the classes a check
+// measures.  The last test keeps that committed catalogue in step with the
+// registry.
+#include "verify/checks/catalogue.h"
 #include "verify/checks/check.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <deque>
+#include <fstream>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <string>
 
 namespace
@@ -91,4 +96,33 @@ TEST_CASE("every registry row is complete and declares its tolerance classes in 
                              [](verify::ToleranceClass a, verify::ToleranceClass b) { return a >= b; }) ==
           c.tolerance_classes.end());
   }
+}
+
+TEST_CASE("the committed verification catalogue is what the registry generates", "[verify][catalogue]")
+{
+  const std::string path = verify::committed_catalogue_path();
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream committed;
+  committed << in.rdbuf();
+  const std::string generated = verify::verification_catalogue();
+  // Name the first line that differs, so the message says what changed.
+  std::istringstream a(committed.str()), b(generated);
+  std::string line_a, line_b;
+  int line = 0;
+  while (true)
+  {
+    ++line;
+    const bool more_a = static_cast<bool>(std::getline(a, line_a));
+    const bool more_b = static_cast<bool>(std::getline(b, line_b));
+    if (!more_a && !more_b)
+      break;
+    if (more_a != more_b || line_a != line_b)
+    {
+      FAIL(path << " is out of date with the check registry (first difference at line " << line
+                << "). Regenerate it with: build/demvv catalogue --out docs/verification_catalogue.md\n"
+                << "  committed: " << (more_a ? line_a : "(end of file)") << "\n"
+                << "  generated: " << (more_b ? line_b : "(end of file)"));
+    }
+  }
+  CHECK(committed.str() == generated);
 }
