@@ -1,88 +1,128 @@
 // Every check of the verification registry, as a test: the same code that
-// writes the report decides the test, so the two can never disagree.  Each
-// metric is asserted with its value, tolerance and reason in the message.
+// writes the report decides the test, so the two can never disagree.
+//
+// The tests are not typed out here: when the program starts, one Catch2 test
+// per registry row is registered from check_registry(), named by the row's
+// id and title and tagged [verify] and [<family>], so catch_discover_tests
+// makes each check its own ctest test and a new row is a new test with no
+// edit here.  Each metric is asserted with its value, tolerance, class and
+// reason in the message, and its tolerance class must be one its row
+// declares; every declared class must be used, so the catalogue
+// (docs/verification_catalogue.md) lists exactly the classes a check
+// measures.  The last test keeps that committed catalogue in step with the
+// registry.
+#include "verify/checks/catalogue.h"
 #include "verify/checks/check.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <deque>
+#include <fstream>
+#include <memory>
+#include <set>
+#include <sstream>
 #include <string>
 
 namespace
 {
-void require_check(const char *id)
+void require_check(std::string_view id)
 {
   const verify::Check *check = verify::find_check(id);
   REQUIRE(check != nullptr);
   const verify::CheckOutcome outcome = check->run({verify::default_cases_dir(), true});
   REQUIRE_FALSE(outcome.metrics.empty());
+  const std::set<verify::ToleranceClass> declared(check->tolerance_classes.begin(), check->tolerance_classes.end());
+  std::set<verify::ToleranceClass> used;
   for (const verify::Metric &m : outcome.metrics)
   {
-    INFO(id << ": " << m.name << " = " << m.value << (m.at_least ? " >= " : " <= ") << m.tolerance << " ("
-            << m.reason << ")");
+    INFO(id << ": " << m.name << " = " << m.value << (m.at_least ? " >= " : " <= ") << m.tolerance << " (class "
+            << verify::tolerance_class_letter(m.tolerance_class) << ": " << m.reason << ")");
     CHECK(m.pass);
+    CHECK(declared.count(m.tolerance_class) == 1);
+    used.insert(m.tolerance_class);
   }
+  INFO(id << " declares tolerance classes " << verify::tolerance_class_list(check->tolerance_classes)
+          << " in its registry row; its metrics use "
+          << verify::tolerance_class_list({used.begin(), used.end()}));
+  CHECK(used == declared);
 }
+
+/// Runs one registered check; Catch owns it once registered.
+class CheckInvoker : public Catch::ITestInvoker
+{
+public:
+  explicit CheckInvoker(std::string_view id) : id_(id) {}
+  void invoke() const override { require_check(id_); }
+
+private:
+  std::string_view id_; ///< points into the registry, which lives as long as the program
+};
+
+/// Registers one test per registry row.  Catch refers to names and tags by
+/// StringRef, so they are kept in a deque, whose elements never move.
+bool register_check_tests()
+{
+  static std::deque<std::string> names_and_tags;
+  for (const verify::Check &c : verify::check_registry())
+  {
+    const std::string &name = names_and_tags.emplace_back(std::string(c.id) + " " + std::string(c.title));
+    const std::string &tags = names_and_tags.emplace_back("[verify][" + std::string(c.family) + "]");
+    // AutoReg hands the invoker to the test case, which owns it from then on.
+    Catch::AutoReg(std::make_unique<CheckInvoker>(c.id).release(), CATCH_INTERNAL_LINEINFO, Catch::StringRef(),
+                   Catch::NameAndTags{name, tags});
+  }
+  return true;
+}
+
+const bool check_tests_registered = register_check_tests();
 } // namespace
 
-TEST_CASE("V01 linear normal impact matches Chung & Ooi closed forms", "[verify][contact]") { require_check("V01"); }
-TEST_CASE("V02 contact bond carries load to its strength and breaks by the PFC rules", "[verify][contact]")
+TEST_CASE("every registry row is complete and declares its tolerance classes in order", "[verify]")
 {
-  require_check("V02");
-}
-TEST_CASE("V03 Coulomb slip and block on an incline", "[verify][contact]") { require_check("V03"); }
-TEST_CASE("V04 objectivity under rigid rotation and renumbering", "[verify][engine]") { require_check("V04"); }
-TEST_CASE("V05 free flight is exact", "[verify][engine]") { require_check("V05"); }
-TEST_CASE("V06 critical time step: stability limit and automatic bound", "[verify][engine]") { require_check("V06"); }
-TEST_CASE("V07 integrator converges with order 2", "[verify][engine]") { require_check("V07"); }
-TEST_CASE("V08 energy audit of a bulk run closes within 1 %", "[verify][bulk]") { require_check("V08"); }
-TEST_CASE("V09 wave front in a bonded chain travels at c0", "[verify][bulk]") { require_check("V09"); }
-TEST_CASE("V10 cell list with skin equals brute force", "[verify][engine]") { require_check("V10"); }
-TEST_CASE("V11 lattice porosity and coordination", "[verify][bulk]") { require_check("V11"); }
-TEST_CASE("V12 SUNDIALS Burger's chain matches eq. 7.18 and its superpositions", "[verify][continuum]")
-{
-  require_check("V12");
-}
-TEST_CASE("V13 SUNDIALS Burger's creep matches eq. 2.15", "[verify][continuum]") { require_check("V13"); }
-TEST_CASE("V14 the Burger's CN update is second order and flips sign in the stiff limit", "[verify][burgers]")
-{
-  require_check("V14");
-}
-TEST_CASE("V15 a two-ball Burger's pull follows eq. 7.18", "[verify][burgers]") { require_check("V15"); }
-TEST_CASE("V16 scaling both viscosities reproduces the unscaled curve, C_inf alone does not", "[verify][burgers]")
-{
-  require_check("V16");
-}
-TEST_CASE("V17 the displacement criterion breaks at delta_c at every velocity", "[verify][burgers]")
-{
-  require_check("V17");
-}
-TEST_CASE("V18 affine moduli equal the contact sums over isotropic normals", "[verify][continuum]")
-{
-  require_check("V18");
-}
-TEST_CASE("V19 same-shape continuum stress is c f_B by both homogenisation routes", "[verify][continuum]")
-{
-  require_check("V19");
-}
-TEST_CASE("V20 frictionless cylinder: patch test and time order", "[verify][continuum]") { require_check("V20"); }
-TEST_CASE("V21 manufactured solutions converge at the theoretical orders", "[verify][continuum]")
-{
-  require_check("V21");
-}
-TEST_CASE("V22 bonded cylinder GCI below 1 % with monotone convergence", "[verify][continuum]")
-{
-  require_check("V22");
-}
-
-TEST_CASE("every registered check has a test above", "[verify]")
-{
-  // Adding a check to the registry without a test here fails this case.
-  const std::vector<std::string> tested = {"V01", "V02", "V03", "V04", "V05", "V06", "V07", "V08", "V09",
-                                           "V10", "V11", "V12", "V13", "V14", "V15", "V16", "V17", "V18", "V19", "V20", "V21", "V22"};
+  REQUIRE(check_tests_registered);
+  std::set<std::string_view> ids;
   for (const verify::Check &c : verify::check_registry())
   {
     INFO("check " << c.id);
-    CHECK(std::find(tested.begin(), tested.end(), std::string(c.id)) != tested.end());
+    CHECK(ids.insert(c.id).second);
+    CHECK_FALSE(c.title.empty());
+    CHECK_FALSE(c.family.empty());
+    CHECK(c.requirement.rfind("demvv", 0) == 0);
+    CHECK_FALSE(c.reference.empty());
+    CHECK(c.run != nullptr);
+    CHECK_FALSE(c.tolerance_classes.empty());
+    CHECK(std::adjacent_find(c.tolerance_classes.begin(), c.tolerance_classes.end(),
+                             [](verify::ToleranceClass a, verify::ToleranceClass b) { return a >= b; }) ==
+          c.tolerance_classes.end());
   }
+}
+
+TEST_CASE("the committed verification catalogue is what the registry generates", "[verify][catalogue]")
+{
+  const std::string path = verify::committed_catalogue_path();
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream committed;
+  committed << in.rdbuf();
+  const std::string generated = verify::verification_catalogue();
+  // Name the first line that differs, so the message says what changed.
+  std::istringstream a(committed.str()), b(generated);
+  std::string line_a, line_b;
+  int line = 0;
+  while (true)
+  {
+    ++line;
+    const bool more_a = static_cast<bool>(std::getline(a, line_a));
+    const bool more_b = static_cast<bool>(std::getline(b, line_b));
+    if (!more_a && !more_b)
+      break;
+    if (more_a != more_b || line_a != line_b)
+    {
+      FAIL(path << " is out of date with the check registry (first difference at line " << line
+                << "). Regenerate it with: build/demvv catalogue --out docs/verification_catalogue.md\n"
+                << "  committed: " << (more_a ? line_a : "(end of file)") << "\n"
+                << "  generated: " << (more_b ? line_b : "(end of file)"));
+    }
+  }
+  CHECK(committed.str() == generated);
 }

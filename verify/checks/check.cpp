@@ -22,9 +22,50 @@ std::string_view category_name(Category c)
   return "?";
 }
 
-Metric relative_error(std::string name, double measured, double expected, double tolerance, std::string reason)
+char tolerance_class_letter(ToleranceClass t)
 {
-  Metric m{std::move(name), 0, tolerance, false, std::move(reason), false};
+  switch (t)
+  {
+  case ToleranceClass::A:
+    return 'A';
+  case ToleranceClass::B:
+    return 'B';
+  case ToleranceClass::C:
+    return 'C';
+  case ToleranceClass::D:
+    return 'D';
+  }
+  return '?';
+}
+
+std::string_view tolerance_class_name(ToleranceClass t)
+{
+  switch (t)
+  {
+  case ToleranceClass::A:
+    return "algebraic";
+  case ToleranceClass::B:
+    return "time-discretised";
+  case ToleranceClass::C:
+    return "event-resolved";
+  case ToleranceClass::D:
+    return "statistical";
+  }
+  return "?";
+}
+
+std::string tolerance_class_list(const std::vector<ToleranceClass> &classes)
+{
+  std::string out;
+  for (ToleranceClass t : classes)
+    out += (out.empty() ? "" : ", ") + std::string(1, tolerance_class_letter(t));
+  return out;
+}
+
+Metric relative_error(std::string name, double measured, double expected, double tolerance, ToleranceClass tc,
+                      std::string reason)
+{
+  Metric m{std::move(name), 0, tolerance, false, tc, std::move(reason), false};
   if (!std::isfinite(measured) || !std::isfinite(expected) || expected == 0)
   {
     m.value = std::nan("");
@@ -36,16 +77,17 @@ Metric relative_error(std::string name, double measured, double expected, double
   return m;
 }
 
-Metric absolute_error(std::string name, double measured, double expected, double tolerance, std::string reason)
+Metric absolute_error(std::string name, double measured, double expected, double tolerance, ToleranceClass tc,
+                      std::string reason)
 {
-  Metric m{std::move(name), std::abs(measured - expected), tolerance, false, std::move(reason), false};
+  Metric m{std::move(name), std::abs(measured - expected), tolerance, false, tc, std::move(reason), false};
   m.pass = std::isfinite(m.value) && m.value <= tolerance;
   return m;
 }
 
-Metric bound(std::string name, double value, double limit, bool at_least, std::string reason)
+Metric bound(std::string name, double value, double limit, bool at_least, ToleranceClass tc, std::string reason)
 {
-  Metric m{std::move(name), value, limit, at_least, std::move(reason), false};
+  Metric m{std::move(name), value, limit, at_least, tc, std::move(reason), false};
   m.pass = std::isfinite(value) && (at_least ? value >= limit : value <= limit);
   return m;
 }

@@ -1,13 +1,21 @@
 // Verification checks: requirement, reference, metric, tolerance, verdict.
 //
-// A check is one row of the registry (checks_registry.cpp): an id, one
-// sentence of requirement ("demvv shall ..."), its V&V category (thesis §2.5:
-// code verification, solution verification, calibration, validation), its
-// tolerance class (VERIFICATION.md: A algebraic, B time-discretised, C event,
-// D statistical), the reference it is measured against, and the function
-// that runs it.  The function returns metrics; each metric carries its
-// value, its tolerance and the reason for that tolerance.  A metric whose
-// value or reference is NaN or missing fails: nothing passes by default.
+// A check is one row of the registry (checks_registry.cpp): an id, a title,
+// the family of checks it belongs to, one sentence of requirement ("demvv
+// shall ..."), its V&V category (thesis §2.5: code verification, solution
+// verification, calibration, validation), the tolerance classes its metrics
+// use, the reference it is measured against, and the function that runs it.
+// The function returns metrics; each metric carries its value, its
+// tolerance, the class of that tolerance and the reason for it.  A metric
+// whose value or reference is NaN or missing fails: nothing passes by
+// default.
+//
+// The class belongs to the metric, not to the check, because one check can
+// measure things limited by different causes: an impact's peak force is
+// limited by the step's truncation error (B) and its duration by where the
+// contact starts inside a step (C).  The registry row declares the classes
+// so that the catalogue can list them without running the check; the tests
+// hold every returned metric to its row's declaration.
 //
 // `demvv verify` runs the registry and writes report.md and report.json; the
 // Catch2 tests run the same checks, so a test and a report can never
@@ -30,23 +38,42 @@ enum class Category
 
 std::string_view category_name(Category c);
 
+/// What limits the accuracy of a metric, and so how its tolerance is set
+/// (the catalogue, catalogue.cpp, gives each class's pass rule and reasoning).
+enum class ToleranceClass
+{
+  A, ///< algebraic or one exact step: round-off only
+  B, ///< time- or mesh-discretised, smooth: truncation error and its order
+  C, ///< event-resolved: an event inside a step, one step's worth
+  D, ///< statistical: scatter between random samples
+};
+
+char tolerance_class_letter(ToleranceClass t);
+/// "algebraic", "time-discretised", "event-resolved", "statistical".
+std::string_view tolerance_class_name(ToleranceClass t);
+/// The letters in order, comma-separated: "B, C".
+std::string tolerance_class_list(const std::vector<ToleranceClass> &classes);
+
 struct Metric
 {
   std::string name;       ///< what is measured, with its unit
   double value = 0;       ///< measured
   double tolerance = 0;   ///< pass when value <= tolerance (or >= for at_least)
   bool at_least = false;  ///< pass when value >= tolerance instead
+  ToleranceClass tolerance_class = ToleranceClass::A; ///< what limits the value's accuracy
   std::string reason;     ///< why this tolerance
   bool pass = false;
 };
 
 /// |measured - expected| / |expected|, passing when <= tolerance; fails on
 /// NaN, infinity or a zero reference.
-Metric relative_error(std::string name, double measured, double expected, double tolerance, std::string reason);
+Metric relative_error(std::string name, double measured, double expected, double tolerance, ToleranceClass tc,
+                      std::string reason);
 /// |measured - expected|, passing when <= tolerance; fails on NaN.
-Metric absolute_error(std::string name, double measured, double expected, double tolerance, std::string reason);
+Metric absolute_error(std::string name, double measured, double expected, double tolerance, ToleranceClass tc,
+                      std::string reason);
 /// value <= limit (or >= when at_least); fails on NaN.
-Metric bound(std::string name, double value, double limit, bool at_least, std::string reason);
+Metric bound(std::string name, double value, double limit, bool at_least, ToleranceClass tc, std::string reason);
 
 /// One level of a convergence study.
 struct ConvergenceRow
@@ -88,9 +115,10 @@ struct Check
 {
   std::string_view id;
   std::string_view title;
+  std::string_view family; ///< contact, engine, bulk, burgers or continuum: its test's tag
   std::string_view requirement;
   Category category;
-  char tolerance_class;
+  std::vector<ToleranceClass> tolerance_classes; ///< every class its metrics use, in order A to D
   std::string_view reference;
   CheckOutcome (*run)(const CheckContext &);
 };

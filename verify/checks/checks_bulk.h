@@ -1,4 +1,4 @@
-// Bulk-level checks of the engine (VERIFICATION.md items 8, 9, 11).
+// Bulk-level checks of the engine (V08, V09, V11).
 #pragma once
 
 #include "verify/checks/check.h"

@@ -1,4 +1,4 @@
-// Burger's contact checks (VERIFICATION.md items 14-17): the law's
+// Burger's contact checks (V14-V17): the law's
 // Crank-Nicolson update against its closed forms (burgers_closed_form.h),
 // two-ball pulls from cases/ exactly as `demvv run` does them, viscosity
 // scaling (eq. 7.21) and its counter-example, and the displacement
@@ -114,8 +114,9 @@ CheckOutcome check_burgers_update(const CheckContext & /*ctx*/)
   for (double dt : {0.1, 0.05, 0.025, 0.0125, 0.00625})
     table.add(dt, pull_error(dt));
   out.tables.push_back(table);
-  out.metrics.push_back(absolute_error("|observed order - 2| on the finest pair of steps", table.last_order(), 2.0, 0.05,
-                                       "class B: the trapezoidal rule is second order; with dt |lambda_2| <= 0.1 "
+  out.metrics.push_back(absolute_error("|observed order - 2| on the finest pair of steps", table.last_order(), 2.0,
+                                       0.05, ToleranceClass::B,
+                                       "the trapezoidal rule is second order; with dt |lambda_2| <= 0.1 "
                                        "the next term shifts the observed order by less than 0.05"));
   // --- stiff limit: K_k dt / (2 C_k) > 1 -----------------------------------
   // Load the element, then let it carry no force (as an unbonded contact
@@ -154,13 +155,14 @@ CheckOutcome check_burgers_update(const CheckContext & /*ctx*/)
     const Recovery r = recover(dt);
     const std::string label = "K_k dt / 2C_k = " + num(kappa) + ": ";
     out.metrics.push_back(relative_error(label + "Kelvin recovery factor per step vs (1 - k)/(1 + k)", r.ratio,
-                                         (1 - kappa) / (1 + kappa), 1e-12,
-                                         "class A: eq. 3.26 with zero force is u_k <- (B/A) u_k"));
+                                         (1 - kappa) / (1 + kappa), 1e-12, ToleranceClass::A,
+                                         "eq. 3.26 with zero force is u_k <- (B/A) u_k"));
     if (kappa > 1)
       out.metrics.push_back(bound(label + "sign changes of u_k in 9 steps (exact: none)", r.sign_changes, 9, true,
+                                  ToleranceClass::A,
                                   "documented stiff-limit behaviour: B/A < 0 flips the sign every step"));
     else
-      out.metrics.push_back(bound(label + "sign changes of u_k in 9 steps", r.sign_changes, 0, false,
+      out.metrics.push_back(bound(label + "sign changes of u_k in 9 steps", r.sign_changes, 0, false, ToleranceClass::A,
                                   "B/A > 0: monotone recovery, as exact"));
     out.notes.push_back(label + "recovery factor " + num(r.ratio) + " per step against the exact " +
                         num(std::exp(-2 * kappa)) + ".");
@@ -176,11 +178,11 @@ CheckOutcome check_burgers_pull(const CheckContext &ctx)
   CheckOutcome out;
   const Pull p = pull(ctx, "v15_burgers_pull");
   out.metrics.push_back(bound("max |F - eq. 7.18| / (C_inf v) over the pull", curve_error(p, p.law, p.speed),
-                              trapezoid_tolerance(p.law, p.dt), false,
-                              "class B: trapezoidal error of the fastest mode, (lambda_2 dt)^2 / 12"));
+                              trapezoid_tolerance(p.law, p.dt), false, ToleranceClass::B,
+                              "trapezoidal error of the fastest mode, (lambda_2 dt)^2 / 12"));
   out.metrics.push_back(relative_error("force at the end vs eq. 7.18", p.tension.back(),
-                                       p.law.constant_velocity_force(p.time.back(), p.speed), 1e-6,
-                                       "class B: as above, at one time"));
+                                       p.law.constant_velocity_force(p.time.back(), p.speed), 1e-6, ToleranceClass::B,
+                                       "as above, at one time"));
   out.notes.push_back("Pulled at " + num(p.speed) + " m/s for " + num(p.time.back()) + " s in " +
                       std::to_string(p.steps) + " steps; f(end) = " + num(p.tension.back()) + " N, C_inf v = " +
                       num(p.law.maxwell_viscosity * p.speed) + " N.");
@@ -201,10 +203,11 @@ CheckOutcome check_viscosity_scaling(const CheckContext &ctx)
 
   // Eq. 7.21: 100 v with both viscosities / 100 gives the unscaled curve.
   out.metrics.push_back(relative_error("run speed / represented speed", both.speed / slow.speed, 100, 1e-9,
-                                       "class A: the fast pull runs 100 times faster"));
+                                       ToleranceClass::A, "the fast pull runs 100 times faster"));
   out.metrics.push_back(bound("both viscosities / 100 at 100 v: max |F(u) - unscaled eq. 7.18| / (C_inf v)",
                               curve_error(both, slow.law, slow.speed), trapezoid_tolerance(both.law, both.dt), false,
-                              "class B: eq. 7.21 is exact; the fast run's own trapezoidal error, (lambda_2 dt)^2/12"));
+                              ToleranceClass::B,
+                              "eq. 7.21 is exact; the fast run's own trapezoidal error, (lambda_2 dt)^2/12"));
   // The thesis's counter-example (Fig. 7.8): C_inf alone scaled.
   const double expected_gap = [&] {
     double g = 0;
@@ -218,16 +221,16 @@ CheckOutcome check_viscosity_scaling(const CheckContext &ctx)
   }();
   out.metrics.push_back(bound("C_inf alone / 100 at 100 v: max |F(u) - its own eq. 7.18| / (C_inf v)",
                               curve_error(c_inf, c_inf.law, c_inf.speed), trapezoid_tolerance(c_inf.law, c_inf.dt),
-                              false, "class B: the engine follows the scaled law's own closed form"));
+                              false, ToleranceClass::B, "the engine follows the scaled law's own closed form"));
   out.metrics.push_back(bound("C_inf alone / 100: max gap to the unscaled curve / (C_inf v)",
-                              curve_error(c_inf, slow.law, slow.speed), 0.5 * expected_gap, true,
+                              curve_error(c_inf, slow.law, slow.speed), 0.5 * expected_gap, true, ToleranceClass::B,
                               "the counter-example must differ from the unscaled curve (closed forms differ by " +
                                 num(expected_gap) + " of C_inf v); at least half of that"));
   // Rate-dependent bond strength at the physical rate, not the run's.
   const dem::RateLaw rate;
   out.metrics.push_back(relative_error("bond strength factor with scaling on vs eq. 7.23 at the physical rate",
-                                       both.bond_strength / 1e9, rate.strength_factor(1, 283), 1e-12,
-                                       "class A: (1 / 0.1)^0.29 at 283 K, not (100 / 0.1)^0.29"));
+                                       both.bond_strength / 1e9, rate.strength_factor(1, 283), 1e-12, ToleranceClass::A,
+                                       "(1 / 0.1)^0.29 at 283 K, not (100 / 0.1)^0.29"));
   out.notes.push_back("Cost: unscaled " + std::to_string(slow.steps) + " steps, viscosity-scaled " +
                       std::to_string(both.steps) + " steps for the same force-displacement curve.");
   return out;
@@ -248,17 +251,18 @@ CheckOutcome check_displacement_criterion(const CheckContext &ctx)
                         {"particles/file=balls_" + v + ".csv", "run/duration=" + num(2 * delta_c / speed)});
     const double u_break = speed * p.break_time;
     out.metrics.push_back(relative_error("v = " + v + " m/s: extension at the break vs delta_c", u_break, delta_c,
-                                         speed * p.dt / delta_c,
-                                         "class C: the break is detected at the first step past delta_c (v dt)"));
+                                         speed * p.dt / delta_c, ToleranceClass::C,
+                                         "the break is detected at the first step past delta_c (v dt)"));
     const double peak = *std::max_element(p.tension.begin(), p.tension.end());
     const double closed = p.law.constant_velocity_force(delta_c / speed, speed);
     out.metrics.push_back(relative_error("v = " + v + " m/s: peak force vs eq. 7.18 at u = delta_c", peak, closed,
-                                         p.law.maxwell_stiffness * speed * p.dt / closed + 1e-6,
-                                         "class C: the last bonded step is within dt of delta_c / v, where the "
+                                         p.law.maxwell_stiffness * speed * p.dt / closed + 1e-6, ToleranceClass::C,
+                                         "the last bonded step is within dt of delta_c / v, where the "
                                          "force rises at most K_0 v"));
     if (!std::isnan(previous_peak))
       out.metrics.push_back(bound("v = " + v + " m/s: peak force above that of the next slower pull [N]", peak,
-                                  previous_peak, true, "thesis Fig. A.1: the peak force grows with the velocity"));
+                                  previous_peak, true, ToleranceClass::C,
+                                  "thesis Fig. A.1: the peak force grows with the velocity"));
     previous_peak = peak;
     out.notes.push_back("v = " + v + " m/s: break at u = " + num(u_break) + " m, peak " + num(peak) + " N");
   }

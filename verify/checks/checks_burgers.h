@@ -1,4 +1,4 @@
-// Burger's contact checks (VERIFICATION.md items 14-17).
+// Burger's contact checks (V14-V17).
 #pragma once
 
 #include "verify/checks/check.h"

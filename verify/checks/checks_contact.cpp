@@ -1,4 +1,4 @@
-// Contact-level code verification (VERIFICATION.md items 1, 2, 3, 5): each
+// Contact-level code verification (V01, V02, V03, V05): each
 // check runs a case deck from cases/ exactly as `demvv run` would and
 // compares its series with the closed form of the law (law_linear.h).
 #include "verify/checks/checks_contact.h"
@@ -35,19 +35,19 @@ void impact_metrics(CheckOutcome &out, const std::string &label, const std::vect
   const double tc = dem::LinearLaw::collision_time(kn, reduced_mass);
   // Onset and end each fall inside one step: the force is positive on the
   // steps in (t_on, t_off), so (last - first + dt) is within one step of t_c.
-  out.metrics.push_back(relative_error(label + ": contact duration, relative error", last - first + dt, tc,
-                                       dt / tc, "class C: onset and end each resolved to one step (dt / t_c)"));
+  out.metrics.push_back(relative_error(label + ": contact duration, relative error", last - first + dt, tc, dt / tc,
+                                       ToleranceClass::C, "onset and end each resolved to one step (dt / t_c)"));
   // The centred-difference solution of a linear spring has amplitude and
   // phase errors O((omega dt)^2) (both below (omega dt)^2 / 2), and
   // sampling the sine at steps misses its top by at most (omega dt)^2 / 8.
   out.metrics.push_back(relative_error(label + ": peak normal force, relative error", peak_force,
                                        dem::LinearLaw::peak_force(kn, reduced_mass, v_in), omega_dt * omega_dt,
-                                       "class B: (omega dt)^2 bounds the amplitude and sampling errors"));
+                                       ToleranceClass::B, "(omega dt)^2 bounds the amplitude and sampling errors"));
   // Energy is conserved up to the spring energy left when the force
   // switches off inside a step: at most 1/2 K (v dt)^2 against 1/2 m* v^2.
   out.metrics.push_back(relative_error(label + ": coefficient of restitution, relative error", v_out / v_in,
-                                       dem::LinearLaw::restitution(), omega_dt * omega_dt,
-                                       "class B: spring energy at the switch-off step, (omega dt)^2"));
+                                       dem::LinearLaw::restitution(), omega_dt * omega_dt, ToleranceClass::B,
+                                       "spring energy at the switch-off step, (omega dt)^2"));
 }
 } // namespace
 
@@ -108,10 +108,11 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
     }
     // Positions carry round-off of ~1e-16 x 2R; K times that is ~1e-12 N.
     out.metrics.push_back(bound("tension: max |F_n + K_n u| / phi_n before the break", law_error, 1e-9, false,
-                                "class A: secant law, round-off in positions only"));
+                                ToleranceClass::A, "secant law, round-off in positions only"));
     out.metrics.push_back(relative_error("tension: extension at break vs phi_n / K_n", u_break, phi / K,
-                                         v * dt / (phi / K), "class C: the break is detected at a step (v dt)"));
-    out.metrics.push_back(bound("tension: largest |F_n| after the break [N]", after, 0.0, false,
+                                         v * dt / (phi / K), ToleranceClass::C,
+                                         "the break is detected at a step (v dt)"));
+    out.metrics.push_back(bound("tension: largest |F_n| after the break [N]", after, 0.0, false, ToleranceClass::A,
                                 "rule of thesis §3.4.2: both forces are set to zero"));
   }
   // --- shear under a compressive preload ---------------------------------
@@ -143,12 +144,13 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
     // relative (u/d)^2 / 2 (< 1e-6 here); 1e-5 allows for it.
     const double turn = (phi / params.ks) / d;
     out.metrics.push_back(bound("shear: max |F_s - K_s u_s| / phi_s before the break", law_error,
-                                std::max(1e-5, turn * turn), false,
-                                "class A up to the geometric turn of the normal, (u/d)^2 / 2"));
+                                std::max(1e-5, turn * turn), false, ToleranceClass::A,
+                                "exact up to the geometric turn of the normal, (u/d)^2 / 2"));
     out.metrics.push_back(relative_error("shear: displacement at break vs phi_s / K_s", u_break, phi / params.ks,
-                                         v * dt / (phi / params.ks), "class C: the break is detected at a step (v dt)"));
+                                         v * dt / (phi / params.ks), ToleranceClass::C,
+                                         "the break is detected at a step (v dt)"));
     out.metrics.push_back(bound("shear: max | |F_s| / (mu F_n) - 1 | after the break", slip_error, 1e-12, false,
-                                "class A: slip rescales the shear force to mu F_n exactly"));
+                                ToleranceClass::A, "slip rescales the shear force to mu F_n exactly"));
   }
   // --- compression ----------------------------------------------------------
   {
@@ -157,9 +159,9 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
     const double phi = deck.real("bonds/normal strength");
     const double broken = r.sim->bonds_broken(dem::BreakMode::tension) + r.sim->bonds_broken(dem::BreakMode::shear);
     out.metrics.push_back(bound("compression: largest compressive force / phi_n",
-                                max_abs(r.contacts.column("normal_force_n")) / phi, 10, true,
+                                max_abs(r.contacts.column("normal_force_n")) / phi, 10, true, ToleranceClass::B,
                                 "the pair is pushed well beyond the tensile strength"));
-    out.metrics.push_back(bound("compression: bonds broken", broken, 0, false,
+    out.metrics.push_back(bound("compression: bonds broken", broken, 0, false, ToleranceClass::A,
                                 "thesis §3.4.2: only tension can break a bond in the normal direction"));
   }
   return out;
@@ -196,12 +198,13 @@ CheckOutcome check_coulomb_slip(const CheckContext &ctx)
     }
     const double turn = onset_expected / d;
     out.metrics.push_back(bound("slip: max |F_s - K_s u_s| / (mu F_n) while sticking", stick_error,
-                                std::max(1e-5, turn * turn), false,
-                                "class A up to the geometric turn of the normal, (u/d)^2 / 2"));
+                                std::max(1e-5, turn * turn), false, ToleranceClass::A,
+                                "exact up to the geometric turn of the normal, (u/d)^2 / 2"));
     out.metrics.push_back(relative_error("slip: displacement at slip onset vs mu F_n / K_s", onset, onset_expected,
-                                         v * dt / onset_expected, "class C: onset resolved to one step (v dt)"));
+                                         v * dt / onset_expected, ToleranceClass::C,
+                                         "onset resolved to one step (v dt)"));
     out.metrics.push_back(bound("slip: max | |F_s| / (mu F_n) - 1 | while slipping", slip_error, 1e-12, false,
-                                "class A: the trial force is rescaled to the Coulomb limit exactly"));
+                                ToleranceClass::A, "the trial force is rescaled to the Coulomb limit exactly"));
   }
   const double g = 9.81, mu = 0.5;
   {
@@ -215,11 +218,11 @@ CheckOutcome check_coulomb_slip(const CheckContext &ctx)
     const double dt = r.series.column("time_step_s").back();
     const double omega_dt = std::sqrt(ks / p.mass[0]) * dt;
     const double largest = max_abs(r.particles.column("x_m"));
-    out.metrics.push_back(relative_error("incline 10 deg: largest down-slope displacement vs 2 m g sin / K_s",
-                                         largest, 2 * p.mass[0] * g * std::sin(theta) / ks, omega_dt * omega_dt,
-                                         "class B: centred-difference amplitude error, (omega dt)^2"));
+    out.metrics.push_back(relative_error("incline 10 deg: largest down-slope displacement vs 2 m g sin / K_s", largest,
+                                         2 * p.mass[0] * g * std::sin(theta) / ks, omega_dt * omega_dt,
+                                         ToleranceClass::B, "centred-difference amplitude error, (omega dt)^2"));
     out.metrics.push_back(bound("incline 10 deg: friction work [J]", r.series.column("friction_dissipated_j").back(),
-                                0.0, false, "the ball must never slip"));
+                                0.0, false, ToleranceClass::A, "the ball must never slip"));
   }
   {
     // Slides: tan(35 deg) > mu; once slipping, friction is mu N, constant,
@@ -232,8 +235,8 @@ CheckOutcome check_coulomb_slip(const CheckContext &ctx)
     // slope is unaffected.  The normal spring starts at its equilibrium
     // overlap written to 17 digits, so N is constant to ~1e-12.
     out.metrics.push_back(relative_error("incline 35 deg: sliding acceleration vs g (sin - mu cos)", fit.slope,
-                                         g * (std::sin(theta) - mu * std::cos(theta)), 1e-9,
-                                         "class A: constant force, the scheme is exact up to round-off"));
+                                         g * (std::sin(theta) - mu * std::cos(theta)), 1e-9, ToleranceClass::A,
+                                         "constant force, the scheme is exact up to round-off"));
   }
   return out;
 }
@@ -253,7 +256,8 @@ CheckOutcome check_free_flight(const CheckContext &ctx)
   // Each step rounds x and v once: the error grows like n eps |x| for n
   // steps (n = 4e4, eps = 1.1e-16: ~5e-12 relative); 100 n eps allows it.
   out.metrics.push_back(bound("projectile: max |x - (x0 + v0 t + g t^2 / 2)| / travel", err / travel,
-                              100 * steps * 1.1e-16, false, "class A: exact for a constant force; n steps of round-off"));
+                              100 * steps * 1.1e-16, false, ToleranceClass::A,
+                              "exact for a constant force; n steps of round-off"));
   return out;
 }
 } // namespace verify

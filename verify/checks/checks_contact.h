@@ -1,4 +1,4 @@
-// Contact-level checks (VERIFICATION.md items 1, 2, 3, 5).
+// Contact-level checks (V01, V02, V03, V05).
 #pragma once
 
 #include "verify/checks/check.h"

@@ -1,4 +1,4 @@
-// Checks of the continuum companion (VERIFICATION.md items 12, 13, 18-22).
+// Checks of the continuum companion (V12, V13, V18-V22).
 #pragma once
 
 #include "verify/checks/check.h"

@@ -1,4 +1,4 @@
-// Engine-level code verification (VERIFICATION.md items 4, 6, 7, 10): checks
+// Engine-level code verification (V04, V06, V07, V10): checks
 // that drive the engine through its API because they prescribe kinematics
 // step by step, sweep a parameter, or compare with an eigen-solve.
 #include "verify/checks/checks_engine.h"
@@ -43,7 +43,7 @@ void bond_all_touching(dem::Simulation &sim, double strength = 1e9)
   dem::bond_touching_pairs(sim.contacts(), sim.particles(), b);
 }
 
-// --- item 4: objectivity ---------------------------------------------------
+// --- V04: objectivity ------------------------------------------------------
 
 /// Loads a pair in shear by a prescribed tangential slide, then turns the
 /// whole pair rigidly by 90 degrees about `axis` in `steps` steps.  Returns
@@ -158,10 +158,10 @@ CheckOutcome check_objectivity(const CheckContext &ctx)
     const double dtheta = dem::pi / 2 / steps, theta = dem::pi / 2;
     const double expected = theta * dtheta * dtheta / 3 + (2 * R / 1e-6) * theta * dtheta * dtheta / 12;
     out.metrics.push_back(bound("rigid turn " + std::string(names[a]) + ": relative change of the forces",
-                                table.rows.back().error, 2 * expected, false,
-                                "class B: Theta dtheta^2 / 3 (twist) + (d/u_s) Theta dtheta^2 / 12 (arms), x2"));
+                                table.rows.back().error, 2 * expected, false, ToleranceClass::B,
+                                "Theta dtheta^2 / 3 (twist) + (d/u_s) Theta dtheta^2 / 12 (arms), x2"));
     out.metrics.push_back(bound("rigid turn " + std::string(names[a]) + ": observed order", table.last_order(), 1.9,
-                                true, "the remaining errors are second order in the turn per step"));
+                                true, ToleranceClass::B, "the remaining errors are second order in the turn per step"));
     out.tables.push_back(table);
   }
   std::vector<int> order(27), reversed(27);
@@ -185,11 +185,12 @@ CheckOutcome check_objectivity(const CheckContext &ctx)
   const double x_max = 2 * R * 2 + R, K = 0.5 * KN;
   const double tolerance = 100 * 2.2e-16 * x_max * K / scale;
   out.metrics.push_back(bound("permutation: max force difference / max force, bonded 27-ball cluster", diff / scale,
-                              tolerance, false, "class A: round-off only (100 position ulps times K, over F_max)"));
+                              tolerance, false, ToleranceClass::A,
+                              "round-off only (100 position ulps times K, over F_max)"));
   return out;
 }
 
-// --- item 6: critical time step ---------------------------------------------
+// --- V06: critical time step ------------------------------------------------
 
 namespace
 {
@@ -229,7 +230,7 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
       largest = std::max(largest, std::abs(sim.particles().position[1].x() - 2 * R));
     }
     out.metrics.push_back(relative_error("omega dt = 1.98: largest amplitude vs (v0/omega)/sqrt(1 - (omega dt)^2/4)",
-                                         largest, v0 / omega / std::sqrt(1 - h * h / 4), 0.01,
+                                         largest, v0 / omega / std::sqrt(1 - h * h / 4), 0.01, ToleranceClass::B,
                                          "sampling of the discrete sine at its steps (< 1 % at 5000 steps)"));
   }
   {
@@ -247,9 +248,10 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     const double c = 1 - h * h / 2;
     const double lambda = std::abs(c) + std::sqrt(c * c - 1);
     const double observed = std::pow(std::max(amp[69], amp[68]) / std::max(amp[29], amp[28]), 1.0 / 40);
-    out.metrics.push_back(relative_error("omega dt = 2.02: growth factor per step vs |lambda| of the scheme",
-                                         observed, lambda, 1e-3,
-                                         "the growing mode dominates after 40 steps; the other decays like 1/|lambda|^k"));
+    out.metrics.push_back(
+      relative_error("omega dt = 2.02: growth factor per step vs |lambda| of the scheme", observed, lambda, 1e-3,
+                     ToleranceClass::B,
+                     "the growing mode dominates after 40 steps; the other decays like 1/|lambda|^k"));
   }
   {
     // The automatic step against the exact limit of small random assemblies:
@@ -297,6 +299,7 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     // Where the bound is exact (a pair, a ball on a wall) the ratio is 1 up
     // to the eigen-solver's round-off (~1e-14 relative).
     out.metrics.push_back(bound("random assemblies: max of bound / exact stability limit", worst, 1.0 + 1e-9, false,
+                                ToleranceClass::A,
                                 "the bound must never exceed the exact limit 2/sqrt(lambda_max(M^-1 K))"));
     out.notes.push_back("critical-step bound / exact limit over " + std::to_string(samples) +
                         " random assemblies: mean " + num(mean) + ", max " + num(worst) +
@@ -305,7 +308,7 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
   return out;
 }
 
-// --- item 7: second-order convergence ----------------------------------------
+// --- V07: second-order convergence -------------------------------------------
 
 namespace
 {
@@ -391,15 +394,15 @@ CheckOutcome check_second_order(const CheckContext &ctx)
       table.add(2 * dem::pi / omega / n, err);
     }
     out.metrics.push_back(bound(std::string(name) + ": observed order, finest pair", table.last_order(), 1.95, true,
-                                "VERIFICATION.md item 7: order in [1.95, 2.05]"));
+                                ToleranceClass::B, "observed order in [1.95, 2.05]"));
     out.metrics.push_back(bound(std::string(name) + ": observed order, finest pair (upper)", table.last_order(), 2.05,
-                                false, "VERIFICATION.md item 7: order in [1.95, 2.05]"));
+                                false, ToleranceClass::B, "observed order in [1.95, 2.05]"));
     out.tables.push_back(table);
   }
   return out;
 }
 
-// --- item 10: neighbour search ---------------------------------------------------
+// --- V10: neighbour search -------------------------------------------------------
 
 CheckOutcome check_neighbour_search(const CheckContext &ctx)
 {
@@ -432,9 +435,9 @@ CheckOutcome check_neighbour_search(const CheckContext &ctx)
         ++configurations;
       }
   out.metrics.push_back(bound("configurations where cell list != brute force", double(mismatches), 0, false,
-                              "exact: same candidate set, same order"));
+                              ToleranceClass::A, "exact: same candidate set, same order"));
   out.metrics.push_back(bound("touching pairs missing after moves < skin/2", double(missed_after_motion), 0, false,
-                              "exact: the skin argument guarantees none"));
+                              ToleranceClass::A, "exact: the skin argument guarantees none"));
   out.notes.push_back(std::to_string(configurations) + " random configurations, " + std::to_string(pairs) +
                       " candidate pairs compared");
   return out;

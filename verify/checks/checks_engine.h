@@ -1,4 +1,4 @@
-// Engine-level checks (VERIFICATION.md items 4, 6, 7, 10).
+// Engine-level checks (V04, V06, V07, V10).
 #pragma once
 
 #include "verify/checks/check.h"

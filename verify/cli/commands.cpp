@@ -1,5 +1,6 @@
 #include "verify/cli/commands.h"
 
+#include "verify/checks/catalogue.h"
 #include "verify/checks/check.h"
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
@@ -70,5 +71,15 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
   std::cerr << "demvv: " << records.size() - failed << " of " << records.size() << " checks pass; report in "
             << out_dir << "/report.md\n";
   return failed ? 1 : 0;
+}
+
+int command_catalogue(const std::string &out_file)
+{
+  const std::string text = verification_catalogue();
+  if (out_file.empty())
+    std::cout << text;
+  else
+    write_atomically(out_file, text);
+  return 0;
 }
 } // namespace verify

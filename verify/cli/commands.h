@@ -19,4 +19,8 @@ int command_defaults(const std::string &kind);
 /// out_dir; returns 1 if any check fails.
 int command_verify(bool full, const std::string &only, const std::string &out_dir, const std::string &cases_dir,
                    int threads);
+
+/// demvv catalogue: writes the verification catalogue generated from the
+/// check registry to out_file, or to standard output when it is empty.
+int command_catalogue(const std::string &out_file);
 } // namespace verify

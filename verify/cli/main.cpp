@@ -4,6 +4,7 @@
 //   demvv defaults KIND
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
 //   demvv bench [--particles N] [--steps N] [--threads N]
+//   demvv catalogue [--out FILE]
 //
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
 // usage; 3 the simulation stopped on a numerical fault; 130 / 143 the run
@@ -76,6 +77,11 @@ int main(int argc, char **argv)
                         "A prepared sample (sample.json or a prepare deck, prepared once and cached) instead of the "
                         "lattice; --particles is then ignored");
 
+  std::string catalogue_out;
+  auto *catalogue_cmd =
+    app.add_subcommand("catalogue", "Write the verification catalogue (Markdown) generated from the check registry");
+  catalogue_cmd->add_option("--out", catalogue_out, "File to write (default: standard output)");
+
   try
   {
     app.parse(argc, argv);
@@ -115,6 +121,8 @@ int main(int argc, char **argv)
         throw verify::DeckError("--quick and --full exclude each other");
       return verify::command_verify(full, only, out_dir.empty() ? "runs/verify" : out_dir, cases_dir, threads);
     }
+    if (catalogue_cmd->parsed())
+      return verify::command_catalogue(catalogue_out);
   }
   catch (const verify::DeckError &e)
   {

@@ -57,6 +57,7 @@ nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohma
                          {"value", m.value},
                          {"tolerance", m.tolerance},
                          {"comparison", m.at_least ? ">=" : "<="},
+                         {"tolerance_class", std::string(1, tolerance_class_letter(m.tolerance_class))},
                          {"tolerance_reason", m.reason},
                          {"pass", m.pass}});
     nlohmann::json tables = nlohmann::json::array();
@@ -68,12 +69,16 @@ nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohma
       tables.push_back({{"title", t.title}, {"h", t.h_name}, {"error", t.error_name},
                         {"expected_order", t.expected_order}, {"levels", rows}});
     }
+    nlohmann::json classes = nlohmann::json::array();
+    for (ToleranceClass t : r.check->tolerance_classes)
+      classes.push_back(std::string(1, tolerance_class_letter(t)));
     failed += r.pass() ? 0 : 1;
     checks.push_back({{"id", r.check->id},
                       {"title", r.check->title},
                       {"requirement", r.check->requirement},
                       {"category", category_name(r.check->category)},
-                      {"tolerance_class", std::string(1, r.check->tolerance_class)},
+                      {"family", r.check->family},
+                      {"tolerance_classes", classes},
                       {"reference", r.check->reference},
                       {"metrics", metrics},
                       {"convergence", tables},
@@ -98,23 +103,25 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
     << (failed ? " — **" + std::to_string(failed) + " FAIL**" : "") << ".\n\n"
     << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
        "verification* (how accurate is this solution), *calibration* (parameters fitted to data) and "
-       "*validation* (is it the right equation). Tolerance classes (VERIFICATION.md): A algebraic, "
-       "B time-discretised, C event, D statistical.\n\n";
-  o << "## Requirements\n\n| id | requirement | class | category | reference | verdict | runtime [s] |\n"
+       "*validation* (is it the right equation). Each metric has a tolerance class: A algebraic (round-off), "
+       "B time-discretised (truncation and its order), C event-resolved (one step), D statistical (seeds); "
+       "docs/verification_catalogue.md defines them.\n\n";
+  o << "## Requirements\n\n| id | requirement | classes | category | reference | verdict | runtime [s] |\n"
     << "|---|---|---|---|---|---|---|\n";
   for (const CheckRecord &r : records)
-    o << "| " << r.check->id << " | " << r.check->requirement << " | " << r.check->tolerance_class << " | "
-      << category_name(r.check->category) << " | " << r.check->reference << " | "
-      << (r.pass() ? "PASS" : "**FAIL**") << " | " << sci(r.seconds) << " |\n";
-  o << "\n## Metrics\n\n| id | metric | value | tolerance | verdict | why this tolerance |\n"
-    << "|---|---|---|---|---|---|\n";
+    o << "| " << r.check->id << " | " << r.check->requirement << " | "
+      << tolerance_class_list(r.check->tolerance_classes) << " | " << category_name(r.check->category) << " | "
+      << r.check->reference << " | " << (r.pass() ? "PASS" : "**FAIL**") << " | " << sci(r.seconds) << " |\n";
+  o << "\n## Metrics\n\n| id | metric | class | value | tolerance | verdict | why this tolerance |\n"
+    << "|---|---|---|---|---|---|---|\n";
   for (const CheckRecord &r : records)
   {
     if (!r.error.empty())
-      o << "| " << r.check->id << " | (the check stopped: " << r.error << ") | | | **FAIL** | |\n";
+      o << "| " << r.check->id << " | (the check stopped: " << r.error << ") | | | | **FAIL** | |\n";
     for (const Metric &m : r.outcome.metrics)
-      o << "| " << r.check->id << " | " << m.name << " | " << sci(m.value) << " | " << (m.at_least ? ">= " : "<= ")
-        << sci(m.tolerance) << " | " << (m.pass ? "PASS" : "**FAIL**") << " | " << m.reason << " |\n";
+      o << "| " << r.check->id << " | " << m.name << " | " << tolerance_class_letter(m.tolerance_class) << " | "
+        << sci(m.value) << " | " << (m.at_least ? ">= " : "<= ") << sci(m.tolerance) << " | "
+        << (m.pass ? "PASS" : "**FAIL**") << " | " << m.reason << " |\n";
   }
   bool any_table = false;
   for (const CheckRecord &r : records)

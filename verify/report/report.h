@@ -1,8 +1,10 @@
 // The verification report: report.md for people, report.json for scripts.
 //
-// report.md has a requirements table (id, requirement, class, V&V category,
-// reference, metric, tolerance, value, verdict, runtime), a convergence
-// table for every order study, the notes of each check, and provenance.
+// report.md has a requirements table (id, requirement, the tolerance classes
+// its metrics use, V&V category, reference, verdict, runtime), a metrics
+// table (metric, its tolerance class, value, tolerance, verdict, reason), a
+// convergence table for every order study, the notes of each check, and
+// provenance.  report.json holds the same, per check and per metric.
 #pragma once
 
 #include "verify/checks/check.h"
