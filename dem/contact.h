@@ -5,7 +5,9 @@
 // when the pair is created (ContactParams, "Ip2"), and everything that evolves
 // lives in ContactState, owned by the ContactTable (ball-ball) or the WallSet
 // (ball-wall).  A contact law ("Law2") reads the first two and updates the
-// third; laws themselves hold only model constants.
+// third; laws themselves hold only model constants and per-step constants.
+// A law that needs more history than ContactState (a Burger's element) keeps
+// it in a LawState slot, which the ContactTable stores beside the entries.
 //
 // Frame: the unit normal n points from the first entity to the second (for a
 // ball-wall contact the wall is first).  The force stored in a contact is the
@@ -15,8 +17,11 @@
 
 #include "dem/types.h"
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <type_traits>
 
 namespace dem
 {
@@ -53,6 +58,15 @@ enum class BreakMode : std::uint8_t
   displacement = 3, ///< centre distance grew by delta_c (appendix A)
 };
 
+/// Trial forces of a contact whose bond broke at this step: the law's
+/// forces before the bond and slip rules changed them.  Recorded only on a
+/// break, so the contact pass pays nothing for them otherwise.
+struct BreakForces
+{
+  double normal = 0; ///< N, trial normal force (compression positive)
+  double shear = 0;  ///< N, magnitude of the trial shear force
+};
+
 /// History of one contact.  Reset when the entities separate.
 struct ContactState
 {
@@ -64,6 +78,21 @@ struct ContactState
   double bond_energy = 0;          ///< J, elastic energy released by the bond's break
   bool touching = false;           ///< carried a force at the last update
 };
+
+/// A contact law's own history of one contact, beyond ContactState: a fixed
+/// number of doubles, so that the ContactTable can keep one slot per entry
+/// in a plain array beside the entries (a law without such history never
+/// loads it) and a file can write it without knowing the law.  Each law
+/// maps its History to and from the values and names them, with units, in
+/// its `state_fields`; the all-zero slot is every law's state at rest.
+struct LawState
+{
+  static constexpr std::size_t capacity = 6; ///< doubles; the largest History (Burger's) needs six
+  std::array<double, capacity> value{};
+
+  friend bool operator==(const LawState &a, const LawState &b) { return a.value == b.value; }
+};
+static_assert(std::is_trivially_copyable_v<LawState>, "the table copies slots as plain bytes");
 
 /// Geometry of a contact at time t, computed once per step, with the
 /// velocities of the interval (t - dt, t) that the centred-difference scheme

@@ -6,6 +6,12 @@
 // contacts and each contact writes only its own entries, so results do not
 // depend on the thread count.
 //
+// A model holds the law's parameters and per-step constants only.  Every
+// contact's history, the law's own included (LawState), lives in the
+// ContactTable, so it follows the entries through rebuilds and goes into
+// snapshots and sample files with them.  A law with no state fields (the
+// linear law) never touches the LawState array.
+//
 // Ball-wall contacts always use the linear law with the wall's own
 // properties (walls.h): walls are steel platens, and the viscoelastic laws
 // describe the bitumen between grains.
@@ -45,9 +51,6 @@ public:
   /// table.loads() and returns how many bonds broke.
   virtual std::size_t resolve_pairs(const ParticleStore &particles, ContactTable &table,
                                     double dt) = 0;
-
-  /// Carries the law's own history over a table rebuild.
-  virtual void remap_history(const std::vector<std::ptrdiff_t> &origin) = 0;
 
   /// Elastic energy stored in all ball-ball contacts [J].
   virtual double stored_energy(const ContactTable &table) const = 0;
@@ -97,7 +100,8 @@ public:
   {
     std::vector<Contact> &contacts = table.entries();
     std::vector<ContactLoad> &loads = table.loads();
-    history_.resize(contacts.size());
+    LawState *const states = table.law_states().data();
+    BreakForces *const trial = table.break_forces().data();
     law_.prepare(dt);
     const auto n = static_cast<std::ptrdiff_t>(contacts.size());
     std::size_t breaks = 0;
@@ -118,9 +122,15 @@ public:
         }
       }
       const ContactGeometry g = sphere_sphere(p, i, j);
-      const ResolvedContact r = resolve_contact(law_, k.params, k.bond, k.state, history_[c], g, dt);
+      typename Law::History history = Law::load(states[c]);
+      const ResolvedContact r = resolve_contact(law_, k.params, k.bond, k.state, history, g, dt);
+      if constexpr (stateful)
+        Law::store(history, states[c]);
       if (r.broke != BreakMode::none)
+      {
         ++breaks;
+        trial[c] = r.trial;
+      }
       if (!r.touching)
       {
         load = ContactLoad{};
@@ -145,20 +155,6 @@ public:
     return breaks;
   }
 
-  void remap_history(const std::vector<std::ptrdiff_t> &origin) override
-  {
-    if constexpr (!std::is_empty_v<typename Law::History>)
-    {
-      std::vector<typename Law::History> next(origin.size());
-      for (std::size_t c = 0; c < origin.size(); ++c)
-        if (origin[c] >= 0 && static_cast<std::size_t>(origin[c]) < history_.size())
-          next[c] = history_[origin[c]];
-      history_.swap(next);
-    }
-    else
-      history_.resize(origin.size());
-  }
-
   double stored_energy(const ContactTable &table) const override
   {
     double e = 0;
@@ -166,7 +162,7 @@ public:
     {
       const ContactState &s = table[c].state;
       if (s.touching)
-        e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, history_[c]);
+        e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, Law::load(table.law_states()[c]));
     }
     return e;
   }
@@ -177,8 +173,10 @@ public:
   }
 
 private:
+  static constexpr bool stateful = !Law::state_fields.empty();
+  static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
+
   Law law_;
-  std::vector<typename Law::History> history_;
 };
 
 /// Law constants a deck can set; each law reads the ones it needs.
@@ -193,9 +191,12 @@ struct LawEntry
   std::string_view keyword;
   std::unique_ptr<ContactModel> (*make)(const LawParameters &);
   std::string_view summary;
+  std::vector<std::string_view> state_fields; ///< names (with units) of the law's LawState values, in order
 };
 
 const std::vector<LawEntry> &law_registry();
+/// The registry row of a keyword, or nullptr if the keyword is unknown.
+const LawEntry *find_law(std::string_view keyword);
 /// The model for a keyword, or nullptr if the keyword is unknown.
 std::unique_ptr<ContactModel> make_contact_model(std::string_view keyword, const LawParameters &p);
 } // namespace dem

@@ -37,6 +37,7 @@ struct ResolvedContact
   Vec3 force = Vec3::Zero(); ///< N, on the second entity
   BreakMode broke = BreakMode::none;
   bool touching = false;
+  BreakForces trial; ///< the law's forces at a break (set only when broke)
 };
 
 template <class Law>
@@ -89,9 +90,11 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
 
   if (bond.intact)
   {
+    const auto record_trial = [&] { out.trial = {fn, shear.norm()}; };
     if (g.arm_first + g.arm_second > bond.break_distance)
     {
       state.bond_energy += law.stored_energy(params, fn, shear, history);
+      record_trial();
       bond.intact = false;
       out.broke = BreakMode::displacement;
       fn = 0;
@@ -100,6 +103,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
     else if (fn < 0 && -fn >= bond.normal_strength)
     {
       state.bond_energy += law.stored_energy(params, fn, shear, history);
+      record_trial();
       bond.intact = false;
       out.broke = BreakMode::tension;
       fn = 0;
@@ -108,6 +112,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
     else if (shear.squaredNorm() >= bond.shear_strength * bond.shear_strength)
     {
       const double before = law.stored_energy(params, fn, shear, history);
+      record_trial();
       bond.intact = false;
       out.broke = BreakMode::shear;
       if (fn < 0)

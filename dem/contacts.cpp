@@ -1,6 +1,8 @@
 #include "dem/contacts.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace dem
 {
@@ -19,12 +21,12 @@ void ContactTable::retire(const Contact &c)
 void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles)
 {
   scratch_.clear();
-  origin_.clear();
+  scratch_states_.clear();
   const auto key = [](const Contact &c) { return Pair{c.first, c.second}; };
   std::size_t old = 0;
   const auto keep_old = [&](std::size_t k) {
     scratch_.push_back(contacts_[k]);
-    origin_.push_back(static_cast<std::ptrdiff_t>(k));
+    scratch_states_.push_back(law_states_[k]);
   };
   for (const Pair &pair : candidates)
   {
@@ -49,7 +51,7 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
       c.second = pair.second;
       c.params = pair_params(particles, pair.first, pair.second);
       scratch_.push_back(c);
-      origin_.push_back(-1);
+      scratch_states_.emplace_back();
     }
   }
   for (; old < contacts_.size(); ++old)
@@ -60,16 +62,21 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
       retire(contacts_[old]);
   }
   contacts_.swap(scratch_);
+  law_states_.swap(scratch_states_);
   rebuild_adjacency(particles.size());
   changed_ = true;
 }
 
-void ContactTable::assign(std::vector<Contact> entries, const ParticleStore &particles,
-                          const RetiredContactEnergy &retired)
+void ContactTable::assign(std::vector<Contact> entries, std::vector<LawState> law_states,
+                          const ParticleStore &particles, const RetiredContactEnergy &retired)
 {
+  if (!law_states.empty() && law_states.size() != entries.size())
+    throw std::invalid_argument("contact table: " + std::to_string(law_states.size()) + " law states for " +
+                                std::to_string(entries.size()) + " contacts");
   contacts_ = std::move(entries);
+  law_states_ = std::move(law_states);
+  law_states_.resize(contacts_.size());
   retired_ = retired;
-  origin_.assign(contacts_.size(), -1);
   rebuild_adjacency(particles.size());
   changed_ = true;
 }
@@ -89,9 +96,7 @@ Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
     c.params = pair_params(particles, i, j);
     it = contacts_.insert(it, c);
     const auto pos = it - contacts_.begin();
-    origin_.resize(contacts_.size());
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(contacts_.size()); ++k)
-      origin_[k] = k < pos ? k : (k == pos ? -1 : k - 1);
+    law_states_.insert(law_states_.begin() + pos, LawState{});
     rebuild_adjacency(particles.size());
     changed_ = true;
     it = contacts_.begin() + pos;
@@ -117,6 +122,7 @@ Contact *ContactTable::find(Index i, Index j)
 void ContactTable::rebuild_adjacency(Index particles)
 {
   loads_.resize(contacts_.size());
+  break_forces_.resize(contacts_.size());
   first_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   second_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   for (const Contact &c : contacts_)

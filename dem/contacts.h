@@ -3,12 +3,14 @@
 // The table holds the neighbour candidates plus every pair that is touching
 // or bonded, sorted by (first, second).  Each entry carries its pair
 // constants (ContactParams, fixed at creation), its bond and its history
-// (ContactState).  When the neighbour list is rebuilt the table merges the
-// new candidates with the old entries by one linear walk over two sorted
-// lists: history survives rebuilds without hashing, and a bonded pair stays
-// in the table however far its balls drift apart.  `origin()` tells, for
-// each new entry, which old entry it continues, so that a law's own history
-// can follow (ContactModel::remap_history).
+// (ContactState).  The contact law's own history (LawState, contact.h) lives
+// in a second array, parallel to the entries: structure of arrays, so that a
+// law without such history (the linear law) never loads it in its contact
+// pass.  When the neighbour list is rebuilt the table merges the new
+// candidates with the old entries by one linear walk over two sorted lists,
+// carrying both arrays: history survives rebuilds without hashing, a new
+// pair starts with its law state at rest, and a bonded pair stays in the
+// table however far its balls drift apart.
 //
 // The per-step results (force on the second ball, torques on both, the
 // stability-bound contributions) live in a separate array of ContactLoad:
@@ -77,10 +79,13 @@ public:
   /// Merges sorted candidates with the current entries (see header note).
   void rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles);
 
-  /// Replaces the table by saved entries (sorted by pair) and retired energy.
-  void assign(std::vector<Contact> entries, const ParticleStore &particles, const RetiredContactEnergy &retired);
+  /// Replaces the table by saved entries (sorted by pair), their law states
+  /// (one per entry, or none: all at rest) and retired energy.
+  void assign(std::vector<Contact> entries, std::vector<LawState> law_states, const ParticleStore &particles,
+              const RetiredContactEnergy &retired);
 
-  /// Adds pair (i, j) if absent and returns its entry.  For set-up only (O(n)).
+  /// Adds pair (i, j) if absent, its law state at rest, and returns its
+  /// entry.  For set-up only (O(n)).
   Contact &ensure(Index i, Index j, const ParticleStore &particles);
   /// Entry of pair (i, j) or nullptr; binary search.
   Contact *find(Index i, Index j);
@@ -91,11 +96,16 @@ public:
   const Contact &operator[](std::size_t c) const { return contacts_[c]; }
   std::vector<Contact> &entries() { return contacts_; }
   const std::vector<Contact> &entries() const { return contacts_; }
+  /// The contact law's own history of entry c is law_states()[c].  The
+  /// entries may be edited in place; adding or removing them goes through
+  /// rebuild, assign or ensure, which keep the two arrays parallel.
+  std::vector<LawState> &law_states() { return law_states_; }
+  const std::vector<LawState> &law_states() const { return law_states_; }
   std::vector<ContactLoad> &loads() { return loads_; }
   const std::vector<ContactLoad> &loads() const { return loads_; }
-
-  /// For entry c after the last rebuild: index of the entry it continues, or -1.
-  const std::vector<std::ptrdiff_t> &origin() const { return origin_; }
+  /// Entry c's trial forces, valid where loads()[c].broke is set.
+  std::vector<BreakForces> &break_forces() { return break_forces_; }
+  const std::vector<BreakForces> &break_forces() const { return break_forces_; }
 
   /// Contacts where p is the first ball: [first_begin(p), first_begin(p+1)).
   std::size_t first_begin(Index p) const { return first_start_[p]; }
@@ -119,8 +129,9 @@ private:
   void retire(const Contact &c);
 
   std::vector<Contact> contacts_, scratch_;
+  std::vector<LawState> law_states_, scratch_states_;
   std::vector<ContactLoad> loads_;
-  std::vector<std::ptrdiff_t> origin_;
+  std::vector<BreakForces> break_forces_;
   std::vector<std::size_t> first_start_, second_start_, second_list_, scratch_positions_;
   RetiredContactEnergy retired_;
   bool changed_ = false;

@@ -51,6 +51,7 @@
 #include "dem/contact.h"
 
 #include <algorithm>
+#include <array>
 #include <string_view>
 #include <type_traits>
 
@@ -120,13 +121,31 @@ struct BurgersContactConstants
   }
 };
 
-/// Per-contact state of a Burger's contact.
+/// Per-contact state of a Burger's contact; all zero is an element at rest.
+/// The contact table keeps it in a LawState slot, in the order and with the
+/// names of `state_fields`.
 struct BurgersHistory
 {
   double overlap = 0;        ///< m, U at the last update (reference of the increment)
   double normal_force = 0;   ///< N, applied normal force of the element
   double normal_kelvin = 0;  ///< m, Kelvin displacement of the normal element
   Vec3 shear_kelvin = Vec3::Zero(); ///< m, Kelvin displacement of the shear element (force sense)
+
+  static constexpr std::array<std::string_view, 6> state_fields = {{
+    "reference_overlap_m", "element_normal_force_n", "normal_kelvin_m",
+    "shear_kelvin_x_m",    "shear_kelvin_y_m",       "shear_kelvin_z_m"}};
+  static_assert(state_fields.size() <= LawState::capacity, "a Burger's history must fit a LawState slot");
+
+  static BurgersHistory load(const LawState &s)
+  {
+    const auto &v = s.value;
+    return {v[0], v[1], v[2], Vec3(v[3], v[4], v[5])};
+  }
+  static void store(const BurgersHistory &h, LawState &s)
+  {
+    s.value = {{h.overlap, h.normal_force, h.normal_kelvin, h.shear_kelvin.x(), h.shear_kelvin.y(),
+                h.shear_kelvin.z()}};
+  }
 };
 
 /// Burger's contact in both directions (plain) or with an elastic normal
@@ -137,6 +156,9 @@ class BurgersLawT
 public:
   static constexpr std::string_view keyword = Modified ? "modified_burgers" : "burgers";
   using History = BurgersHistory;
+  static constexpr auto state_fields = History::state_fields;
+  static History load(const LawState &s) { return History::load(s); }
+  static void store(const History &h, LawState &s) { History::store(h, s); }
 
   explicit BurgersLawT(const BurgersContactConstants &k) : k_(k) {}
   const BurgersContactConstants &constants() const { return k_; }

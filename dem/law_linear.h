@@ -19,6 +19,7 @@
 
 #include "dem/contact.h"
 
+#include <array>
 #include <string_view>
 
 namespace dem
@@ -28,10 +29,14 @@ class LinearLaw
 public:
   static constexpr std::string_view keyword = "linear";
 
-  /// Law-specific history: none beyond ContactState's shear force.
+  /// Law-specific history: none beyond ContactState's shear force, so the
+  /// contact pass never touches the table's LawState slots.
   struct History
   {
   };
+  static constexpr std::array<std::string_view, 0> state_fields{};
+  static History load(const LawState & /*s*/) { return {}; }
+  static void store(const History & /*h*/, LawState & /*s*/) {}
 
   /// Normal force from the current overlap (eq. 3.2).
   double normal_force(const ContactParams &p, double overlap, History & /*h*/,

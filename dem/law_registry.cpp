@@ -1,7 +1,9 @@
 // The contact-law registry.  To add a law: write law_<name>.h with its
-// History, normal_force, shear_force, stored_energy and stiffness functions
-// and its closed forms, then add one row below.  Nothing else changes: decks
-// select a law by this keyword and `demvv defaults` lists the rows.
+// History (and its state_fields, load and store to a LawState slot),
+// normal_force, shear_force, stored_energy and stiffness functions and its
+// closed forms, then add one row below.  Nothing else changes: decks select a
+// law by this keyword, `demvv defaults` lists the rows and sample files name
+// the law's state columns after its state_fields.
 #include "dem/contact_model.h"
 
 #include <stdexcept>
@@ -25,25 +27,39 @@ std::unique_ptr<ContactModel> make_burgers(const LawParameters &p)
   return std::make_unique<LawModel<Law>>(Law{p.burgers});
 }
 
+template <class Law>
+std::vector<std::string_view> fields()
+{
+  return {Law::state_fields.begin(), Law::state_fields.end()};
+}
+
 const std::vector<LawEntry> table = {
   {LinearLaw::keyword, &make<LinearLaw>,
-   "linear springs with per-ball stiffnesses in series (thesis eq. 3.2-3.4, 3.17-3.18)"},
+   "linear springs with per-ball stiffnesses in series (thesis eq. 3.2-3.4, 3.17-3.18)", fields<LinearLaw>()},
   {BurgersLaw::keyword, &make_burgers<BurgersLaw>,
    "Burger's element (Maxwell + Kelvin) in the normal and shear directions, Crank-Nicolson update "
-   "(thesis §3.4.3, eq. 3.25-3.35); constants per contact, no series combination"},
+   "(thesis §3.4.3, eq. 3.25-3.35); constants per contact, no series combination",
+   fields<BurgersLaw>()},
   {ModifiedBurgersLaw::keyword, &make_burgers<ModifiedBurgersLaw>,
    "modified Burger's (thesis §7.2.2): elastic E_0^n in normal compression, Burger's in normal tension "
-   "and in shear"},
+   "and in shear",
+   fields<ModifiedBurgersLaw>()},
 };
 } // namespace
 
 const std::vector<LawEntry> &law_registry() { return table; }
 
-std::unique_ptr<ContactModel> make_contact_model(std::string_view keyword, const LawParameters &p)
+const LawEntry *find_law(std::string_view keyword)
 {
   for (const LawEntry &e : table)
     if (e.keyword == keyword)
-      return e.make(p);
+      return &e;
   return nullptr;
+}
+
+std::unique_ptr<ContactModel> make_contact_model(std::string_view keyword, const LawParameters &p)
+{
+  const LawEntry *e = find_law(keyword);
+  return e ? e->make(p) : nullptr;
 }
 } // namespace dem

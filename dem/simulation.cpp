@@ -42,7 +42,10 @@ Simulation::Simulation(Snapshot snap, std::unique_ptr<ContactModel> model, Simul
   : Simulation(std::move(snap.particles), assemble_walls(snap.walls, snap.particles.size(), std::move(snap.wall_history)),
                std::move(model), settings)
 {
-  contacts_.assign(std::move(snap.contacts), particles_, snap.clock.retired);
+  std::vector<LawState> law_states;
+  if (snap.contact_law == model_->name())
+    law_states = std::move(snap.law_states);
+  contacts_.assign(std::move(snap.contacts), std::move(law_states), particles_, snap.clock.retired);
   const SimulationClock &c = snap.clock;
   time_ = c.time;
   step_ = c.steps;
@@ -66,6 +69,8 @@ Snapshot Simulation::snapshot() const
     s.walls.push_back(walls_[w]);
   s.wall_history = walls_.history();
   s.contacts = contacts_.entries();
+  s.contact_law = model_->name();
+  s.law_states = contacts_.law_states();
   SimulationClock &c = s.clock;
   c.time = time_;
   c.steps = step_;
@@ -131,9 +136,8 @@ void Simulation::compute_forces()
     refresh_contacts();
   if (contacts_.take_changed())
   {
-    // Pairs were added (ensure) or the table rebuilt: law history follows
-    // the entries, and the precomputed pair constants are refreshed.
-    model_->remap_history(contacts_.origin());
+    // Pairs were added (ensure) or the table rebuilt: the precomputed pair
+    // constants are refreshed.
     model_->update_stability_terms(particles_, contacts_);
   }
   if (model_->resolve_pairs(particles_, contacts_, dt_prev_) > 0)
@@ -155,12 +159,13 @@ void Simulation::compute_forces()
 void Simulation::record_breaks()
 {
   const auto &loads = contacts_.loads();
+  const auto &trial = contacts_.break_forces();
   for (std::size_t c = 0; c < loads.size(); ++c)
   {
     if (loads[c].broke == BreakMode::none)
       continue;
     const Contact &k = contacts_[c];
-    breaks_.push_back({time_, k.first, k.second, loads[c].broke});
+    breaks_.push_back({time_, k.first, k.second, loads[c].broke, trial[c].normal, trial[c].shear});
     ++broken_count(loads[c].broke);
   }
 }

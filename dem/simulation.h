@@ -86,12 +86,17 @@ struct SimulationClock
   RetiredContactEnergy retired;
 };
 
+/// The law state travels with the keyword of the law that wrote it: a run
+/// continued with another law starts every contact's law state at rest
+/// (slots of different laws mean different things).
 struct Snapshot
 {
   ParticleStore particles;
   std::vector<Wall> walls;
   std::vector<ContactState> wall_history; ///< (wall, ball) wall-major
   std::vector<Contact> contacts;          ///< sorted by (first, second)
+  std::string contact_law;                ///< keyword of the law of law_states (empty: none)
+  std::vector<LawState> law_states;       ///< one per contact, or none (all at rest)
   SimulationClock clock;
 };
 
@@ -127,7 +132,8 @@ class Simulation
 public:
   Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<ContactModel> model,
              SimulationSettings settings);
-  /// Continues a saved run (see Snapshot).
+  /// Continues a saved run (see Snapshot); the contacts' law states only
+  /// when the snapshot's law is the model's.
   Simulation(Snapshot snapshot, std::unique_ptr<ContactModel> model, SimulationSettings settings);
 
   /// The state a run can be continued from, exactly.

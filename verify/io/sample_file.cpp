@@ -3,6 +3,13 @@
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 
+#include "dem/contact_model.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string_view>
+
 namespace verify
 {
 namespace
@@ -23,12 +30,30 @@ const std::vector<std::string> state_columns = {"touching", "normal_force_n", "o
                                                 "ny",       "nz",             "shear_x_n", "shear_y_n",
                                                 "shear_z_n", "friction_work_j", "bond_energy_j"};
 
-std::vector<std::string> contact_columns()
+constexpr int format_version = 2;
+
+/// Contact columns: pair, constants, bond (with its break distance from
+/// version 2 on), ContactState, then the law's own state (none in a version
+/// 1 file).
+std::vector<std::string> contact_columns(const std::vector<std::string_view> &law_fields, int version)
 {
   std::vector<std::string> c = {"first",    "second",           "kn_npm",          "ks_npm",
                                 "friction", "bonded",           "normal_strength_n", "shear_strength_n"};
+  if (version >= 2)
+    c.push_back("break_distance_m");
   c.insert(c.end(), state_columns.begin(), state_columns.end());
+  for (std::string_view f : law_fields)
+    c.push_back("law_" + std::string(f));
   return c;
+}
+
+/// The registry row of a sample's contact law.
+const dem::LawEntry &sample_law(const std::string &keyword, const std::string &path)
+{
+  const dem::LawEntry *law = dem::find_law(keyword);
+  if (!law)
+    throw DeckError(path + ": contact_law '" + keyword + "' is not a contact law of this demvv");
+  return *law;
 }
 
 std::vector<std::string> wall_contact_columns()
@@ -139,12 +164,21 @@ void write_sample(const std::string &path, const SampleFile &sample)
 {
   const dem::Snapshot &s = sample.snapshot;
   const dem::SimulationClock &c = s.clock;
+  const std::string law_keyword =
+    !s.contact_law.empty() ? s.contact_law : !sample.contact_law.empty() ? sample.contact_law : "linear";
+  if (!s.contact_law.empty() && !sample.contact_law.empty() && s.contact_law != sample.contact_law)
+    throw std::invalid_argument(path + ": the sample names contact law '" + sample.contact_law +
+                                "' but its snapshot holds the state of '" + s.contact_law + "'");
+  if (!s.law_states.empty() && s.law_states.size() != s.contacts.size())
+    throw std::invalid_argument(path + ": " + std::to_string(s.law_states.size()) + " law states for " +
+                                std::to_string(s.contacts.size()) + " contacts");
+  const std::vector<std::string_view> &law_fields = sample_law(law_keyword, path).state_fields;
   json doc = {{"format", "demvv-sample"},
-              {"format_version", 1},
+              {"format_version", format_version},
               {"units", "SI (m, kg, s, N, J); compression positive"},
               {"title", sample.title},
               {"seed", sample.seed},
-              {"contact_law", sample.contact_law},
+              {"contact_law", law_keyword},
               {"cell", {{"diameter_m", sample.cell.diameter},
                         {"height_m", sample.cell.height},
                         {"bottom", sample.cell.bottom},
@@ -192,14 +226,20 @@ void write_sample(const std::string &path, const SampleFile &sample)
   doc["balls"] = {{"columns", ball_columns}, {"rows", balls}};
 
   json contacts = json::array();
-  for (const dem::Contact &k : s.contacts)
+  for (std::size_t e = 0; e < s.contacts.size(); ++e)
   {
+    const dem::Contact &k = s.contacts[e];
     json row = json::array({k.first, k.second, k.params.kn, k.params.ks, k.params.friction, k.bond.intact ? 1 : 0,
                             k.bond.normal_strength, k.bond.shear_strength});
+    // No displacement criterion is an infinite distance: null in JSON.
+    row.push_back(std::isfinite(k.bond.break_distance) ? json(k.bond.break_distance) : json(nullptr));
     append_state(row, k.state);
+    const dem::LawState law = s.law_states.empty() ? dem::LawState{} : s.law_states[e];
+    for (std::size_t f = 0; f < law_fields.size(); ++f)
+      row.push_back(law.value[f]);
     contacts.push_back(row);
   }
-  doc["contacts"] = {{"columns", contact_columns()}, {"rows", contacts}};
+  doc["contacts"] = {{"columns", contact_columns(law_fields, format_version)}, {"rows", contacts}};
 
   json wall_contacts = json::array();
   for (std::size_t slot = 0; slot < s.wall_history.size(); ++slot)
@@ -230,14 +270,18 @@ SampleFile read_sample(const std::string &path)
   {
     throw DeckError(path + ": not a valid sample file (JSON error: " + std::string(e.what()) + ")");
   }
-  if (doc.value("format", "") != "demvv-sample" || doc.value("format_version", 0) != 1)
-    throw DeckError(path + ": not a demvv sample file of format version 1");
+  const int version = doc.value("format_version", 0);
+  if (doc.value("format", "") != "demvv-sample" || version < 1 || version > format_version)
+    throw DeckError(path + ": not a demvv sample file of format version 1 to " + std::to_string(format_version));
   try
   {
     SampleFile out;
     out.title = doc.value("title", "");
     out.seed = doc.value("seed", 0LL);
     out.contact_law = doc.value("contact_law", "linear");
+    // Version 1 files have no law state: every contact's is at rest.
+    const std::vector<std::string_view> law_fields =
+      version == 1 ? std::vector<std::string_view>{} : sample_law(out.contact_law, path).state_fields;
     out.preparation = doc.value("preparation", json::object());
     out.provenance = doc.value("provenance", json::object());
     const json &cell = doc.at("cell");
@@ -283,7 +327,11 @@ SampleFile read_sample(const std::string &path)
                                row[19].get<double>()});
     }
     const auto n = static_cast<long>(s.particles.size());
-    for (const json &row : table_rows(doc, "contacts", contact_columns(), path))
+    const std::vector<std::string> columns = contact_columns(law_fields, version);
+    const std::size_t state_at = version >= 2 ? 9 : 8;
+    const std::size_t law_at = columns.size() - law_fields.size();
+    s.contact_law = out.contact_law;
+    for (const json &row : table_rows(doc, "contacts", columns, path))
     {
       dem::Contact k;
       k.first = row[0];
@@ -294,8 +342,16 @@ SampleFile read_sample(const std::string &path)
       k.bond.intact = row[5].get<double>() != 0;
       k.bond.normal_strength = row[6];
       k.bond.shear_strength = row[7];
-      k.state = read_state(row, 8);
+      if (version >= 2)
+        k.bond.break_distance = row[8].is_null() ? std::numeric_limits<double>::infinity() : row[8].get<double>();
+      k.state = read_state(row, state_at);
       s.contacts.push_back(k);
+      if (law_fields.empty())
+        continue;
+      dem::LawState law;
+      for (std::size_t f = 0; f < law_fields.size(); ++f)
+        law.value[f] = row[law_at + f].get<double>();
+      s.law_states.push_back(law);
     }
     s.wall_history.assign(static_cast<std::size_t>(n) * s.walls.size(), dem::ContactState{});
     for (const json &row : table_rows(doc, "wall_contacts", wall_contact_columns(), path))

@@ -1,7 +1,6 @@
 // Unit tests of engine pieces, each against an exact value.
-#include "support/two_body.h"
+#include "tests/dem/two_body.h"
 
-#include "verify/run/analysis.h"
 #include "dem/bonds.h"
 #include "dem/measure.h"
 #include "dem/neighbors.h"
@@ -11,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <vector>
 
 using namespace demtest;
 using Catch::Matchers::WithinRel;
@@ -78,6 +78,33 @@ TEST_CASE("contact history survives neighbour rebuilds; bonded pairs stay listed
   CHECK(sim.contacts().find(0, 1) == nullptr);
 }
 
+TEST_CASE("a bond break is logged with the trial forces that broke it", "[dem][bonds]")
+{
+  // Two touching balls bonded with phi_n = 0.1 N, pulled apart at 2 v: the
+  // normal force K^n U falls by K^n 2 v dt per step at most (the spring slows them), so the trial force at
+  // the break lies within one such decrement beyond -phi_n; no shear motion.
+  const double kn = 1e6, phi = 0.1, v = 0.1, dt = 1e-7;
+  auto sim = two_balls(1e-3, 2e-3, kn);
+  sim.settings().fixed_time_step = dt;
+  sim.refresh_contacts();
+  dem::bond_pair(sim.contacts(), sim.particles(), 0, 1, phi, 10.0);
+  sim.particles().velocity[0] = Vec3(-v, 0, 0);
+  sim.particles().velocity[1] = Vec3(v, 0, 0);
+  std::vector<dem::BondBreak> breaks;
+  for (int k = 0; k < 100000 && breaks.empty(); ++k)
+  {
+    sim.step();
+    breaks = sim.take_breaks();
+  }
+  REQUIRE(breaks.size() == 1);
+  CHECK(breaks[0].mode == dem::BreakMode::tension);
+  CHECK(breaks[0].normal_force <= -phi);
+  const double pair_kn = dem::in_series(kn, kn);
+  CHECK(breaks[0].normal_force > -phi - pair_kn * 2 * v * dt * (1 + 1e-9));
+  CHECK(breaks[0].shear_force == 0);
+  CHECK(sim.contacts().find(0, 1)->state.normal_force == 0); // the applied force after the break
+}
+
 TEST_CASE("Gaussian bond strengths are seeded and truncated and counted; removal is exact", "[dem][bonds]")
 {
   dem::ParticleStore p;
@@ -110,23 +137,6 @@ TEST_CASE("Gaussian bond strengths are seeded and truncated and counted; removal
   const auto rc = dem::bond_touching_pairs(c.contacts(), c.particles(), s);
   CHECK(rc.removed == static_cast<std::size_t>(std::llround(0.2 * 540)));
   CHECK(rc.bonded + rc.removed == 540);
-}
-
-TEST_CASE("analysis: line fit and peak and largest rate", "[verify][analysis]")
-{
-  const std::vector<double> x = {0, 1, 2, 3, 4, 5};
-  const std::vector<double> y = {1, 3, 5, 7, 6, 2};
-  const auto fit = verify::fit_line(x, y, 0, 3);
-  CHECK(fit.points == 4);
-  CHECK_THAT(fit.slope, WithinRel(2.0, 1e-14));
-  CHECK_THAT(fit.intercept, WithinRel(1.0, 1e-14));
-  const auto pk = verify::peak(x, y);
-  CHECK(pk.value == 7);
-  CHECK(pk.at == 3);
-  double at = 0, rate = 0;
-  REQUIRE(verify::x_at_max_rate(x, std::vector<double>{0, 0, 1, 5, 8, 8}, at, rate));
-  CHECK(at == 3); // centred differences 0.5, 2.5, 3.5, 1.5 at x = 1..4
-  CHECK(rate == 3.5);
 }
 
 TEST_CASE("a ball resting on a wall gets a finite step that is exactly the limit", "[dem][stability]")

@@ -1,0 +1,187 @@
+// A contact law's own history (LawState) lives with the contact: it follows
+// the entries through table rebuilds and snapshots, so a Burger's run saved
+// mid-test continues its elements exactly.
+#include "tests/dem/two_body.h"
+
+#include "dem/bonds.h"
+#include "dem/specimen.h"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+using namespace demtest;
+
+namespace
+{
+/// A recognisable, non-rest Burger's state.
+dem::LawState element(double scale)
+{
+  dem::BurgersHistory h;
+  h.overlap = -1e-7 * scale;
+  h.normal_force = -0.5 * scale;
+  h.normal_kelvin = 2e-8 * scale;
+  h.shear_kelvin = Vec3(1e-9, -3e-9, 5e-9) * scale;
+  dem::LawState s;
+  dem::BurgersHistory::store(h, s);
+  return s;
+}
+
+/// A bonded FCC cylinder (about 300 balls) between platens, the top one
+/// moving down; `law` is a registry keyword.
+dem::Simulation compressed_cylinder(std::string_view law)
+{
+  const dem::BallSpec spec = ball(Vec3::Zero(), 0, 1.2e7, 1.2e6, 0.5);
+  dem::Specimen s = dem::lattice_specimen(dem::Lattice::face_centred_cubic, 0.885e-3, 0.008, 0.008, spec,
+                                          {1.2e7, 1.2e6, 0.3}, {}, false);
+  const dem::WallIndex top = s.top;
+  dem::Simulation sim(std::move(s.particles), std::move(s.walls), dem::make_contact_model(law, {}), {});
+  sim.refresh_contacts();
+  dem::BondSettings bonds;
+  bonds.normal_strength = bonds.shear_strength = 0.05;
+  dem::bond_touching_pairs(sim.contacts(), sim.particles(), bonds);
+  sim.walls()[top].velocity = Vec3(0, 0, -0.5);
+  return sim;
+}
+
+std::size_t non_rest_states(const dem::ContactTable &t)
+{
+  std::size_t n = 0;
+  for (const dem::LawState &s : t.law_states())
+    n += s == dem::LawState{} ? 0 : 1;
+  return n;
+}
+} // namespace
+
+TEST_CASE("a Burger's history maps to its LawState slot and back, all zero at rest", "[dem][law_state]")
+{
+  const dem::LawState s = element(1.0);
+  const dem::BurgersHistory h = dem::BurgersHistory::load(s);
+  dem::LawState back;
+  dem::BurgersHistory::store(h, back);
+  CHECK(back == s);
+  const dem::BurgersHistory rest = dem::BurgersHistory::load(dem::LawState{});
+  CHECK(rest.overlap == 0);
+  CHECK(rest.normal_force == 0);
+  CHECK(rest.normal_kelvin == 0);
+  CHECK(rest.shear_kelvin == Vec3::Zero());
+  CHECK(dem::find_law("burgers")->state_fields.size() == dem::BurgersHistory::state_fields.size());
+  CHECK(dem::find_law("linear")->state_fields.empty());
+}
+
+TEST_CASE("table rebuilds carry each contact's law state; a new pair starts at rest", "[dem][law_state][contacts]")
+{
+  dem::ParticleStore p;
+  for (int k = 0; k < 4; ++k)
+    p.add(ball(Vec3(2e-3 * k, 0, 0), 1e-3, 1e6));
+  dem::ContactTable t;
+  t.rebuild({{0, 1}, {2, 3}}, p);
+  REQUIRE(t.law_states().size() == 2);
+  t.law_states()[0] = element(1.0);
+  t.law_states()[1] = element(2.0);
+  t[1].state.touching = true; // (2, 3) stays even when no longer a candidate
+
+  // (1, 2) is new and lands between the two old entries; (2, 3) is kept for
+  // its touching state although it is no candidate any more.
+  t.rebuild({{0, 1}, {1, 2}}, p);
+  REQUIRE(t.size() == 3);
+  REQUIRE(t.law_states().size() == 3);
+  CHECK(t.law_states()[t.find(0, 1) - &t[0]] == element(1.0));
+  CHECK(t.law_states()[t.find(1, 2) - &t[0]] == dem::LawState{});
+  CHECK(t.law_states()[t.find(2, 3) - &t[0]] == element(2.0));
+
+  // A pair inserted by ensure starts at rest and shifts the others' slots with them.
+  t.ensure(0, 2, p);
+  REQUIRE(t.law_states().size() == 4);
+  CHECK(t.law_states()[t.find(0, 2) - &t[0]] == dem::LawState{});
+  CHECK(t.law_states()[t.find(2, 3) - &t[0]] == element(2.0));
+
+  // A pair that left the table and comes back is a new contact: at rest.
+  t.rebuild({{0, 1}}, p);
+  CHECK(t.find(2, 3) != nullptr);
+  t.find(2, 3)->state.touching = false;
+  t.rebuild({{0, 1}}, p);
+  CHECK(t.find(2, 3) == nullptr);
+  t.rebuild({{0, 1}, {2, 3}}, p);
+  CHECK(t.law_states()[t.find(2, 3) - &t[0]] == dem::LawState{});
+  CHECK(t.law_states()[t.find(0, 1) - &t[0]] == element(1.0));
+
+  // Assigned entries take their states, or rest when none are given.
+  std::vector<dem::Contact> entries = t.entries();
+  t.assign(entries, {element(3.0), element(4.0)}, p, {});
+  CHECK(t.law_states()[1] == element(4.0));
+  t.assign(entries, {}, p, {});
+  CHECK(t.law_states() == std::vector<dem::LawState>(2));
+  CHECK_THROWS_AS(t.assign(entries, {element(1.0)}, p, {}), std::invalid_argument);
+}
+
+TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][law_state][snapshot]")
+{
+  // Exact equality is expected: the continued run starts from the same
+  // doubles for everything a step reads (balls, walls, contact and law
+  // states, the last time step, the clock) and performs the same operations
+  // in the same order.  Its neighbour list is rebuilt at once, so its table
+  // may list other untouching candidates, but those add exact zeros to the
+  // per-ball sums; the touching contacts are gathered in the same pair
+  // order.  Only the law state was missing before it moved into the table.
+  for (const char *law : {"burgers", "modified_burgers"})
+  {
+    INFO(law);
+    dem::Simulation a = compressed_cylinder(law);
+    for (int k = 0; k < 300; ++k)
+      a.step();
+    const dem::Snapshot snap = a.snapshot();
+    CHECK(snap.contact_law == law);
+    REQUIRE(snap.law_states.size() == snap.contacts.size());
+    REQUIRE(non_rest_states(a.contacts()) > 50); // the elements are loaded: the test has teeth
+    dem::Simulation b(snap, dem::make_contact_model(law, {}), {});
+    // The same snapshot with the elements at rest, as before law state was saved.
+    dem::Snapshot rested = snap;
+    rested.law_states.clear();
+    dem::Simulation c(rested, dem::make_contact_model(law, {}), {});
+    for (int k = 0; k < 300; ++k)
+    {
+      a.step();
+      b.step();
+      c.step();
+    }
+    CHECK(a.bonds_broken(dem::BreakMode::tension) + a.bonds_broken(dem::BreakMode::shear) > 0);
+    bool all_equal = true, rest_differs = false;
+    for (dem::Index p = 0; p < a.particles().size(); ++p)
+    {
+      all_equal = all_equal && a.particles().position[p] == b.particles().position[p] &&
+                  a.particles().velocity[p] == b.particles().velocity[p] &&
+                  a.particles().spin[p] == b.particles().spin[p] &&
+                  a.particles().force[p] == b.particles().force[p];
+      rest_differs = rest_differs || a.particles().position[p] != c.particles().position[p];
+    }
+    CHECK(all_equal);
+    CHECK(rest_differs);
+    for (const dem::Contact &k : a.contacts().entries())
+    {
+      const dem::Contact *other = b.contacts().find(k.first, k.second);
+      if (!k.state.touching)
+        continue;
+      REQUIRE(other != nullptr);
+      CHECK(other->state.normal_force == k.state.normal_force);
+      CHECK(other->state.shear_force == k.state.shear_force);
+      CHECK(b.contacts().law_states()[other - &b.contacts()[0]] ==
+            a.contacts().law_states()[&k - &a.contacts()[0]]);
+    }
+    CHECK(a.time() == b.time());
+    CHECK(a.bonds_broken(dem::BreakMode::tension) == b.bonds_broken(dem::BreakMode::tension));
+    CHECK(a.bonds_broken(dem::BreakMode::shear) == b.bonds_broken(dem::BreakMode::shear));
+    CHECK(a.energy().residual() == b.energy().residual());
+  }
+}
+
+TEST_CASE("a snapshot of another law's state continues with every law state at rest", "[dem][law_state][snapshot]")
+{
+  dem::Simulation a = compressed_cylinder("burgers");
+  for (int k = 0; k < 100; ++k)
+    a.step();
+  REQUIRE(non_rest_states(a.contacts()) > 0);
+  const dem::Simulation b(a.snapshot(), dem::make_contact_model("modified_burgers", {}), {});
+  CHECK(b.contacts().size() == a.contacts().size());
+  CHECK(non_rest_states(b.contacts()) == 0);
+}
