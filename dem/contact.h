@@ -21,6 +21,9 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
+#include <string>
+#include <string_view>
 #include <type_traits>
 
 namespace dem
@@ -93,6 +96,39 @@ struct LawState
   friend bool operator==(const LawState &a, const LawState &b) { return a.value == b.value; }
 };
 static_assert(std::is_trivially_copyable_v<LawState>, "the table copies slots as plain bytes");
+
+/// What the rate scaling of a test (thesis eq. 7.21, 7.23) multiplies a
+/// law constant by: the stiffness factor or the viscosity factor.
+enum class RateScaled
+{
+  stiffness,
+  viscosity,
+};
+
+/// A constant of a contact law that a deck sets, declared by the law beside
+/// its keyword (its `deck_constants`): decks, `demvv defaults` and the rate
+/// scaling read these, so a new law with constants touches no deck code.
+struct LawConstant
+{
+  std::string_view key;  ///< deck key inside `subsection contact law`
+  double default_value;  ///< in `unit`
+  std::string_view unit; ///< SI
+  std::string_view help;
+  RateScaled scaling;
+};
+
+/// Law constants by deck key, as a deck gives them; a law reads the ones it
+/// declares, and a key left out takes its declared default.
+struct LawParameters
+{
+  std::map<std::string, double, std::less<>> values;
+
+  double operator[](const LawConstant &c) const
+  {
+    const auto it = values.find(c.key);
+    return it == values.end() ? c.default_value : it->second;
+  }
+};
 
 /// Geometry of a contact at time t, computed once per step, with the
 /// velocities of the interval (t - dt, t) that the centred-difference scheme

@@ -179,12 +179,6 @@ private:
   Law law_;
 };
 
-/// Law constants a deck can set; each law reads the ones it needs.
-struct LawParameters
-{
-  BurgersContactConstants burgers; ///< burgers, modified_burgers (Table 7.2 layout)
-};
-
 /// The registry: one row per law keyword (law_registry.cpp).
 struct LawEntry
 {
@@ -192,6 +186,7 @@ struct LawEntry
   std::unique_ptr<ContactModel> (*make)(const LawParameters &);
   std::string_view summary;
   std::vector<std::string_view> state_fields; ///< names (with units) of the law's LawState values, in order
+  std::vector<LawConstant> deck_constants;    ///< what a deck sets for this law
 };
 
 const std::vector<LawEntry> &law_registry();

@@ -54,6 +54,7 @@
 #include <array>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 namespace dem
 {
@@ -162,6 +163,49 @@ public:
 
   explicit BurgersLawT(const BurgersContactConstants &k) : k_(k) {}
   const BurgersContactConstants &constants() const { return k_; }
+
+  /// The constants a deck sets (Table 7.2 layout, Table 7.2 defaults).
+  static std::vector<LawConstant> deck_constants()
+  {
+    std::vector<LawConstant> c = {
+      {"normal maxwell stiffness", 0.5e6, "N/m",
+       "Burger's K_0 (K_m) of the normal element (tension only for modified_burgers), a contact property "
+       "(Table 7.2: 0.5 MN/m).", RateScaled::stiffness},
+      {"normal maxwell viscosity", 0.5e6, "N s/m",
+       "Burger's C_inf (C_m) of the normal element (tension only for modified_burgers) (Table 7.2: 0.5 MN s/m).",
+       RateScaled::viscosity},
+      {"normal kelvin stiffness", 0.5e6, "N/m",
+       "Burger's K_1 (K_k) of the normal element (tension only for modified_burgers) (Table 7.2: 0.5 MN/m).",
+       RateScaled::stiffness},
+      {"normal kelvin viscosity", 0.5e6, "N s/m",
+       "Burger's C_1 (C_k) of the normal element (tension only for modified_burgers) (Table 7.2: 0.5 MN s/m).",
+       RateScaled::viscosity},
+      {"shear maxwell stiffness", 0.5e6, "N/m",
+       "Burger's K_0 (K_m) of the shear element, a contact property (Table 7.2: 0.5 MN/m).", RateScaled::stiffness},
+      {"shear maxwell viscosity", 0.5e6, "N s/m", "Burger's C_inf (C_m) of the shear element (Table 7.2: 0.5 MN s/m).",
+       RateScaled::viscosity},
+      {"shear kelvin stiffness", 0.5e6, "N/m", "Burger's K_1 (K_k) of the shear element (Table 7.2: 0.5 MN/m).",
+       RateScaled::stiffness},
+      {"shear kelvin viscosity", 0.5e6, "N s/m", "Burger's C_1 (C_k) of the shear element (Table 7.2: 0.5 MN s/m).",
+       RateScaled::viscosity}};
+    if (Modified)
+      c.push_back({"compression stiffness", 0.5e6, "N/m",
+                   "E_0^n of modified_burgers: elastic normal stiffness in compression (Table 7.2: 0.5 MN/m).",
+                   RateScaled::stiffness});
+    return c;
+  }
+
+  /// The law's constants from a deck's values (defaults where absent).
+  static BurgersContactConstants constants_from(const LawParameters &p)
+  {
+    const std::vector<LawConstant> c = deck_constants();
+    BurgersContactConstants k;
+    k.normal = {p[c[0]], p[c[1]], p[c[2]], p[c[3]]};
+    k.shear = {p[c[4]], p[c[5]], p[c[6]], p[c[7]]};
+    if (Modified)
+      k.compression_stiffness = p[c[8]];
+    return k;
+  }
 
   /// Computes the coefficients of eq. 3.27 and 3.35 once per step (the
   /// contact pass calls this before its parallel loop).

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <string_view>
+#include <vector>
 
 namespace dem
 {
@@ -28,6 +29,8 @@ class LinearLaw
 {
 public:
   static constexpr std::string_view keyword = "linear";
+  /// No deck constants: the stiffnesses and friction are per ball.
+  static std::vector<LawConstant> deck_constants() { return {}; }
 
   /// Law-specific history: none beyond ContactState's shear force, so the
   /// contact pass never touches the table's LawState slots.

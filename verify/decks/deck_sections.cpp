@@ -13,6 +13,26 @@ namespace
 constexpr double inf = std::numeric_limits<double>::infinity();
 }
 
+namespace
+{
+/// Every law's deck constants, each key once (laws may share keys), in the
+/// order of the registry, with the laws that use it.
+std::vector<std::pair<dem::LawConstant, std::string>> all_law_constants()
+{
+  std::vector<std::pair<dem::LawConstant, std::string>> all;
+  for (const dem::LawEntry &law : dem::law_registry())
+    for (const dem::LawConstant &c : law.deck_constants)
+    {
+      const auto same = std::find_if(all.begin(), all.end(), [&](const auto &a) { return a.first.key == c.key; });
+      if (same == all.end())
+        all.push_back({c, std::string(law.keyword)});
+      else
+        same->second += ", " + std::string(law.keyword);
+    }
+  return all;
+}
+} // namespace
+
 void declare_contact_law(DeckSchema &s)
 {
   std::vector<std::string> names;
@@ -24,21 +44,9 @@ void declare_contact_law(DeckSchema &s)
   }
   s.enter("contact law");
   s.choice("law", names.front(), names, help);
-  const char *directions[] = {"normal", "shear"};
-  for (const char *dir : directions)
-  {
-    const std::string what = std::string(dir) == "normal" ? "normal (tension for modified_burgers)" : "shear";
-    s.real(std::string(dir) + " maxwell stiffness", 0.5e6, 0, inf, "N/m",
-           "Burger's K_0 (K_m) of the " + what + " element, a contact property (Table 7.2: 0.5 MN/m).", true);
-    s.real(std::string(dir) + " maxwell viscosity", 0.5e6, 0, inf, "N s/m",
-           "Burger's C_inf (C_m) of the " + what + " element (Table 7.2: 0.5 MN s/m).", true);
-    s.real(std::string(dir) + " kelvin stiffness", 0.5e6, 0, inf, "N/m",
-           "Burger's K_1 (K_k) of the " + what + " element (Table 7.2: 0.5 MN/m).", true);
-    s.real(std::string(dir) + " kelvin viscosity", 0.5e6, 0, inf, "N s/m",
-           "Burger's C_1 (C_k) of the " + what + " element (Table 7.2: 0.5 MN s/m).", true);
-  }
-  s.real("compression stiffness", 0.5e6, 0, inf, "N/m",
-         "E_0^n of modified_burgers: elastic normal stiffness in compression (Table 7.2: 0.5 MN/m).", true);
+  for (const auto &[c, laws] : all_law_constants())
+    s.real(std::string(c.key), c.default_value, 0, inf, std::string(c.unit),
+           std::string(c.help) + " Used by: " + laws + ".", true);
   s.leave();
 }
 
@@ -46,28 +54,20 @@ LawSpec LawSpec::parse(const Deck &d)
 {
   LawSpec law;
   law.keyword = d.text("contact law/law");
-  const auto element = [&](const std::string &dir) {
-    const std::string k = "contact law/" + dir;
-    return dem::BurgersConstants{d.real(k + " maxwell stiffness"), d.real(k + " maxwell viscosity"),
-                                 d.real(k + " kelvin stiffness"), d.real(k + " kelvin viscosity")};
-  };
-  law.constants.burgers.normal = element("normal");
-  law.constants.burgers.shear = element("shear");
-  law.constants.burgers.compression_stiffness = d.real("contact law/compression stiffness");
+  for (const auto &[c, laws] : all_law_constants())
+    law.constants.values[std::string(c.key)] = d.real("contact law/" + std::string(c.key));
   return law;
 }
 
 std::unique_ptr<dem::ContactModel> LawSpec::make(const RateScaling &rate) const
 {
   dem::LawParameters p = constants;
-  for (dem::BurgersConstants *k : {&p.burgers.normal, &p.burgers.shear})
+  for (const auto &[c, laws] : all_law_constants())
   {
-    k->maxwell_stiffness *= rate.stiffness_factor;
-    k->maxwell_viscosity *= rate.viscosity_factor;
-    k->kelvin_stiffness *= rate.stiffness_factor;
-    k->kelvin_viscosity *= rate.viscosity_factor;
+    const auto it = p.values.find(c.key);
+    if (it != p.values.end())
+      it->second *= c.scaling == dem::RateScaled::stiffness ? rate.stiffness_factor : rate.viscosity_factor;
   }
-  p.burgers.compression_stiffness *= rate.stiffness_factor;
   return dem::make_contact_model(keyword, p);
 }
 

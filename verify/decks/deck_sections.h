@@ -53,14 +53,14 @@ struct RateSpec
   RateScaling scaling(double run_rate) const;
 };
 
-/// subsection "contact law": the keyword of a registered law and the
-/// constants of the Burger's laws (Table 7.2 layout).
+/// subsection "contact law": the keyword of a registered law and every
+/// law's deck constants (dem::LawEntry::deck_constants), each key once.
 void declare_contact_law(DeckSchema &s);
 
 struct LawSpec
 {
   std::string keyword = "linear";
-  dem::LawParameters constants; ///< unscaled, as written
+  dem::LawParameters constants; ///< every law's deck constants by key, unscaled, as written
 
   static LawSpec parse(const Deck &d);
   /// The law with its stiffnesses and viscosities scaled by `rate`.
