@@ -147,10 +147,7 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
   }
   catch (const continuum::NumericalFailure &f)
   {
-    run.status.fault = true;
-    run.status.step = f.step();
-    run.status.time = f.time();
-    run.status.message = f.what();
+    record_failure(run.status, f);
   }
   progress.finish();
   run.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

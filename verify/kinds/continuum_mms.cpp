@@ -108,10 +108,7 @@ MmsResult run_mms_deck(const Deck &deck, const RunOptions &options)
   }
   catch (const continuum::NumericalFailure &f)
   {
-    result.status.fault = true;
-    result.status.time = f.time();
-    result.status.step = f.step();
-    result.status.message = f.what();
+    record_failure(result.status, f);
   }
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
