@@ -425,7 +425,7 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
 {
   CheckOutcome out;
   const std::string name = "c03_cylinder_frictionless";
-  const continuum::CylinderSpec spec = read_cylinder_spec(load_case(ctx, name));
+  const continuum::CylinderSpec spec = parse_cylinder(load_case(ctx, name)).test;
   const double dt = spec.final_strain / spec.strain_rate / spec.time_steps;
   const continuum::UniaxialResponse point =
     continuum::uniaxial_material_point(spec.solid, spec.strain_rate, dt, spec.time_steps);
@@ -525,10 +525,11 @@ CheckOutcome check_manufactured_solutions(const CheckContext &ctx)
   {
     if (ctx.quick && !s.quick)
       continue;
-    const MmsResult r = run_mms_deck(load_case(ctx, s.deck, s.overrides), {"", 0, false});
+    const MmsDeckSpec deck = parse_mms(load_case(ctx, s.deck, s.overrides));
+    const MmsResult r = run_mms_deck(deck, {"", 0, false});
     if (r.status.fault)
       throw std::runtime_error(std::string(s.deck) + ": " + r.status.diagnostic());
-    const continuum::MmsSpec spec = read_mms_spec(load_case(ctx, s.deck, s.overrides));
+    const continuum::MmsSpec &spec = deck.study;
     const std::vector<ConvergenceTable> tables = mms_tables(r.levels, spec);
     const bool space = spec.variable == continuum::MmsVariable::space;
     for (std::size_t k = 0; k < tables.size(); ++k)

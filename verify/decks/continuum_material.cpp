@@ -119,11 +119,12 @@ void declare_continuum_material(DeckSchema &s)
   s.leave();
 }
 
-ContinuumMaterial read_continuum_material(const Deck &deck)
+ContinuumMaterial parse_continuum_material(const Deck &deck)
 {
   ContinuumMaterial m;
   const std::string source = deck.text("material/source");
-  const bool same_shape = deck.text("material/model") == "same shape";
+  const std::string model = deck.text("material/model");
+  const bool same_shape = model == "same shape";
   if (source != "direct" && !same_shape)
     deck.fail("material/model", "expected 'same shape' when material/source is '" + source +
                                   "' (contact constants map to one Burger's shape in shear and bulk, SPEC §6)");
@@ -163,7 +164,7 @@ ContinuumMaterial read_continuum_material(const Deck &deck)
                      {"young_per_normal_stiffness_per_m", young / kn}};
   }
   m.solid.bulk = same_shape ? continuum::BulkResponse::same_shape : continuum::BulkResponse::elastic;
-  m.description["model"] = deck.text("material/model");
+  m.description["model"] = model;
   m.description["moduli"] = describe_solid(m.solid);
   return m;
 }

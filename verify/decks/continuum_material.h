@@ -22,14 +22,17 @@ namespace verify
 {
 void declare_continuum_material(DeckSchema &s);
 
+/// The section, parsed and validated: the solid (moduli in Pa, viscosities
+/// in Pa s) and what summary.json says of where it came from.
 struct ContinuumMaterial
 {
   continuum::BurgersSolid solid;
   nlohmann::json description; ///< the route, its inputs and the resulting moduli (for summary.json)
 };
 
-/// Reads the section; throws DeckError (one line) on an inadmissible material.
-ContinuumMaterial read_continuum_material(const Deck &deck);
+/// Reads every key of the section once (and, for a calibrated material, its
+/// summary file); throws DeckError (one line) on an inadmissible material.
+ContinuumMaterial parse_continuum_material(const Deck &deck);
 
 /// The moduli of a solid as JSON (Young, shear, bulk and uniaxial chains, nu).
 nlohmann::json describe_solid(const continuum::BurgersSolid &solid);

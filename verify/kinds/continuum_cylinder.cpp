@@ -67,31 +67,17 @@ void declare_cylinder(DeckSchema &s)
   s.leave();
 }
 
-void read_cylinder_geometry(const Deck &deck, double &radius, double &height)
+CylinderGeometry parse_cylinder_geometry(const Deck &deck)
 {
-  radius = deck.real("geometry/radius");
-  height = deck.real("geometry/height");
-  if (height < 0.25 * radius || height > 16 * radius)
+  const CylinderGeometry g{deck.real("geometry/radius"), deck.real("geometry/height")};
+  if (g.height < 0.25 * g.radius || g.height > 16 * g.radius)
     deck.fail("geometry/height", "expected a height between R/4 and 16 R (the coarse mesh has cells about R wide)");
+  return g;
 }
 
-continuum::CylinderSpec read_cylinder_spec(const Deck &deck)
+const char *geometry_keyword(continuum::Geometry geometry)
 {
-  continuum::CylinderSpec spec;
-  read_cylinder_geometry(deck, spec.radius, spec.height);
-  spec.solid = read_continuum_material(deck).solid;
-  spec.platens = deck.text("loading/platens") == "bonded" ? continuum::Platens::bonded
-                                                           : continuum::Platens::frictionless;
-  spec.strain_rate = deck.real("loading/strain rate");
-  spec.final_strain = deck.real("loading/final strain");
-  spec.time_steps = static_cast<unsigned int>(deck.integer("discretisation/time steps"));
-  spec.geometry = deck.text("discretisation/model") == "3d" ? continuum::Geometry::three_dimensional
-                                                            : continuum::Geometry::axisymmetric;
-  spec.degree = static_cast<unsigned int>(deck.integer("discretisation/degree"));
-  spec.refinements = static_cast<unsigned int>(deck.integer("discretisation/refinements"));
-  spec.solver_tolerance = deck.real("discretisation/solver tolerance");
-  spec.paraview_every = static_cast<unsigned int>(deck.integer("output/paraview every"));
-  return spec;
+  return geometry == continuum::Geometry::three_dimensional ? "3d" : "axisymmetric";
 }
 
 double interpolate(const std::vector<double> &xs, const std::vector<double> &ys, double x)
@@ -114,43 +100,46 @@ const std::vector<std::string> columns = {"time_s",
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-/// One compression test; the series streams to series_path when it is not empty.
-CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, const nlohmann::json &material,
+const char *platens_keyword(continuum::Platens platens)
+{
+  return platens == continuum::Platens::bonded ? "bonded" : "frictionless";
+}
+
+/// One compression test of a deck (`test` is its test at one level); the
+/// series streams to series_path when it is not empty.
+CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderSpec &test,
                         const std::string &series_path)
 {
   CylinderResult run;
   run.series = Series(columns);
   if (!series_path.empty())
-    run.series.stream_to(series_path, "demvv cylinder '" + deck.name() +
+    run.series.stream_to(series_path, "demvv cylinder '" + spec.deck.name +
                                         "': SI units; compression positive for axial stress and strain; "
                                         "radial strain = -u_r/R at mid-height; closed form: eq. 7.18 with the "
                                         "solid's uniaxial chain (homogeneous state)");
-  const dem::BurgersConstants uniaxial = burgers_constants(spec.solid.uniaxial());
+  const dem::BurgersConstants uniaxial = burgers_constants(test.solid.uniaxial());
   const continuum::ParallelInfo mpi = continuum::parallel_info();
-  Progress progress(mpi.rank == 0 ? "cylinder " + deck.name() : "");
+  Progress progress(mpi.rank == 0 ? "cylinder " + spec.deck.name : "");
   const auto start = std::chrono::steady_clock::now();
   long iterations = 0;
   try
   {
-    continuum::CompressionTest test(spec);
-    run.mesh = test.mesh();
-    test.run([&](const continuum::CylinderStep &s) {
-      const double closed = uniaxial.constant_velocity_force(s.time, spec.strain_rate);
+    continuum::CompressionTest compression(test);
+    run.mesh = compression.mesh();
+    compression.run([&](const continuum::CylinderStep &s) {
+      const double closed = uniaxial.constant_velocity_force(s.time, test.strain_rate);
       run.series.add({s.time, s.axial_strain, s.axial_stress, s.radial_strain, closed,
-                      spec.solid.lateral_strain(s.axial_strain, closed) + 0.0, double(s.iterations)});
+                      test.solid.lateral_strain(s.axial_strain, closed) + 0.0, double(s.iterations)});
       iterations += s.iterations;
       run.status.steps = s.step;
       run.status.time = s.time;
       if (mpi.rank == 0)
-        progress.update(double(s.step) / spec.time_steps, "strain " + std::to_string(s.axial_strain));
+        progress.update(double(s.step) / test.time_steps, "strain " + std::to_string(s.axial_strain));
     });
   }
   catch (const continuum::NumericalFailure &f)
   {
-    run.status.fault = true;
-    run.status.step = f.step();
-    run.status.time = f.time();
-    run.status.message = f.what();
+    record_failure(run.status, f);
   }
   progress.finish();
   run.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -159,8 +148,7 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
   const auto sig = run.series.column("axial_stress_pa");
   const auto rad = run.series.column("radial_strain");
   const auto closed = run.series.column("axial_stress_closed_form_pa");
-  const auto window = deck.real_list("measurement/fit window");
-  const auto [modulus, poisson] = fit_elastic(eps, sig, rad, window[0], window[1]);
+  const auto [modulus, poisson] = fit_elastic(eps, sig, rad, spec.fit_from, spec.fit_to);
   const Peak pk = peak(eps, sig);
   double deviation = 0, scale = 0;
   for (std::size_t k = 0; k < sig.size(); ++k)
@@ -170,27 +158,27 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
   }
   run.summary = {
     {"kind", "cylinder"},
-    {"title", deck.text("title")},
+    {"title", spec.title},
     {"status", run.status.to_json()},
-    {"geometry", {{"radius_m", spec.radius},
-                  {"height_m", spec.height},
-                  {"model", deck.text("discretisation/model")},
+    {"geometry", {{"radius_m", test.radius},
+                  {"height_m", test.height},
+                  {"model", geometry_keyword(test.geometry)},
                   {"nominal_platen_area_m2", run.mesh.platen_area},
                   {"mesh_platen_area_m2", run.mesh.mesh_platen_area}}},
-    {"material", material},
-    {"loading", {{"platens", deck.text("loading/platens")},
-                 {"strain_rate_per_s", spec.strain_rate},
-                 {"final_strain", spec.final_strain}}},
-    {"discretisation", {{"degree", spec.degree},
-                        {"refinements", spec.refinements},
+    {"material", spec.material},
+    {"loading", {{"platens", platens_keyword(test.platens)},
+                 {"strain_rate_per_s", test.strain_rate},
+                 {"final_strain", test.final_strain}}},
+    {"discretisation", {{"degree", test.degree},
+                        {"refinements", test.refinements},
                         {"cells", run.mesh.cells},
                         {"dofs", run.mesh.dofs},
                         {"cell_size_m", run.mesh.cell_size},
-                        {"time_steps", spec.time_steps},
+                        {"time_steps", test.time_steps},
                         {"time_step_s", run.mesh.time_step},
                         {"time_scheme", "trapezoidal (Crank-Nicolson), order 2"},
                         {"solver", "CG + Trilinos AMG"},
-                        {"solver_tolerance", spec.solver_tolerance},
+                        {"solver_tolerance", test.solver_tolerance},
                         {"cg_iterations", iterations},
                         {"mpi_ranks", run.mesh.ranks}}},
     {"peak_stress_pa", number_or_null(pk.value)},
@@ -198,7 +186,7 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
     {"stress_at_1_percent_strain_pa", number_or_null(interpolate(eps, sig, 0.01))},
     {"initial_modulus_pa", modulus.points >= 2 ? nlohmann::json(modulus.slope) : nlohmann::json(nullptr)},
     {"poisson_ratio", poisson.points >= 2 ? nlohmann::json(poisson.slope) : nlohmann::json(nullptr)},
-    {"fit_window_axial_strain", window},
+    {"fit_window_axial_strain", {spec.fit_from, spec.fit_to}},
     {"radial_strain_at_end", rad.empty() ? nlohmann::json(nullptr) : nlohmann::json(rad.back())},
     {"max_deviation_from_homogeneous_closed_form", number_or_null(scale > 0 ? deviation / scale : std::nan(""))},
     {"wall_seconds", run.status.wall_seconds}};
@@ -206,7 +194,7 @@ CylinderResult compress(const Deck &deck, const continuum::CylinderSpec &spec, c
 }
 
 /// The refinement levels of a GCI study (empty: a single run).
-std::vector<unsigned int> study_levels(const Deck &deck)
+std::vector<unsigned int> parse_study_levels(const Deck &deck)
 {
   const std::string key = "study/gci refinements";
   std::vector<unsigned int> levels;
@@ -259,36 +247,62 @@ void add_gci(const std::vector<CylinderResult> &runs, std::size_t finest, double
 }
 } // namespace
 
-continuum::CylinderSpec parse_cylinder(const Deck &deck)
+CylinderDeckSpec parse_cylinder(const Deck &deck)
 {
-  continuum::CylinderSpec spec = read_cylinder_spec(deck);
-  study_levels(deck);
-  const auto window = deck.real_list("measurement/fit window");
+  CylinderDeckSpec spec;
+  spec.deck = DeckRecord(deck);
+  spec.title = deck.text("title");
+  continuum::CylinderSpec &test = spec.test;
+  const CylinderGeometry geometry = parse_cylinder_geometry(deck);
+  test.radius = geometry.radius;
+  test.height = geometry.height;
+  const ContinuumMaterial material = parse_continuum_material(deck);
+  test.solid = material.solid;
+  spec.material = material.description;
+  test.platens = deck.text("loading/platens") == "bonded" ? continuum::Platens::bonded
+                                                           : continuum::Platens::frictionless;
+  test.strain_rate = deck.real("loading/strain rate");
+  test.final_strain = deck.real("loading/final strain");
+  test.time_steps = static_cast<unsigned int>(deck.integer("discretisation/time steps"));
+  test.geometry = deck.text("discretisation/model") == "3d" ? continuum::Geometry::three_dimensional
+                                                            : continuum::Geometry::axisymmetric;
+  test.degree = static_cast<unsigned int>(deck.integer("discretisation/degree"));
+  test.refinements = static_cast<unsigned int>(deck.integer("discretisation/refinements"));
+  test.solver_tolerance = deck.real("discretisation/solver tolerance");
+  test.paraview_every = static_cast<unsigned int>(deck.integer("output/paraview every"));
+  spec.paraview = deck.flag("output/paraview");
+  spec.gci_levels = parse_study_levels(deck);
+  spec.gci_safety_factor = deck.real("study/gci safety factor");
+  const std::vector<double> window = deck.real_list("measurement/fit window");
   if (!(window[1] > window[0]))
     deck.fail("measurement/fit window", "expected two increasing strains");
-  read_continuum_material(deck);
+  spec.fit_from = window[0];
+  spec.fit_to = window[1];
   return spec;
 }
 
 CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
 {
+  return run_cylinder(parse_cylinder(deck), options);
+}
+
+CylinderResult run_cylinder(const CylinderDeckSpec &spec, const RunOptions &options)
+{
   const int threads = apply_threads(options);
-  continuum::CylinderSpec spec = parse_cylinder(deck);
-  const std::vector<unsigned int> levels = study_levels(deck);
-  const auto window = deck.real_list("measurement/fit window");
+  continuum::CylinderSpec test = spec.test;
+  const std::vector<unsigned int> &levels = spec.gci_levels;
   const continuum::ParallelInfo mpi = continuum::parallel_info();
   const bool writer = mpi.rank == 0 && !options.out_dir.empty();
   std::unique_ptr<RunDirectory> dir;
   if (writer)
-    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, 0);
-  const bool paraview = deck.flag("output/paraview") && !options.out_dir.empty();
-  const nlohmann::json material = read_continuum_material(deck).description;
+    dir = std::make_unique<RunDirectory>(options.out_dir, spec.deck, threads, 0);
+  const bool paraview = spec.paraview && !options.out_dir.empty();
 
   if (levels.empty())
   {
     if (paraview)
-      spec.paraview_directory = options.out_dir + "/paraview";
-    CylinderResult run = compress(deck, spec, material, writer ? dir->path("series.csv") : "");
+      test.paraview_directory = options.out_dir + "/paraview";
+    CylinderResult run = compress(spec, test, writer ? dir->path("series.csv") : "");
     if (dir)
       dir->write_summary(run.summary);
     return run;
@@ -299,18 +313,18 @@ CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
   RunStatus status;
   for (const unsigned int level : levels)
   {
-    spec.refinements = level;
+    test.refinements = level;
     const std::string level_dir = options.out_dir + "/level_" + std::to_string(level);
     if (paraview)
-      spec.paraview_directory = level_dir + "/paraview";
+      test.paraview_directory = level_dir + "/paraview";
     if (writer)
       make_directories(level_dir);
-    runs.push_back(compress(deck, spec, material, writer ? level_dir + "/series.csv" : ""));
+    runs.push_back(compress(spec, test, writer ? level_dir + "/series.csv" : ""));
     nlohmann::json &s = runs.back().summary;
     if (writer)
     {
       nlohmann::json copy = s;
-      copy["provenance"] = provenance(threads, 0, deck.resolved());
+      copy["provenance"] = provenance(threads, 0, spec.deck.resolved);
       copy["provenance"]["note"] = "one level of a GCI study: refinements overridden to " + std::to_string(level);
       write_atomically(level_dir + "/summary.json", copy.dump(2) + "\n");
     }
@@ -340,18 +354,17 @@ CylinderResult run_cylinder(const Deck &deck, const RunOptions &options)
   nlohmann::json studies = nlohmann::json::array();
   if (!status.fault)
   {
-    const double safety = deck.real("study/gci safety factor");
-    add_gci(runs, runs.size() - 1, safety, out, studies);
+    add_gci(runs, runs.size() - 1, spec.gci_safety_factor, out, studies);
     if (runs.size() == 4)
-      add_gci(runs, 2, safety, out, studies);
+      add_gci(runs, 2, spec.gci_safety_factor, out, studies);
   }
   out.summary = {{"kind", "cylinder"},
-                 {"title", deck.text("title")},
+                 {"title", spec.title},
                  {"status", status.to_json()},
                  {"study", "grid convergence index, Celik et al. (2008); finest triplet first"},
                  {"levels", level_summaries},
                  {"gci", studies},
-                 {"material", material},
+                 {"material", spec.material},
                  {"wall_seconds", status.wall_seconds}};
   if (dir)
     dir->write_summary(out.summary);

@@ -27,6 +27,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
 #include <vector>
 
 namespace verify
@@ -34,10 +35,40 @@ namespace verify
 void declare_cylinder(DeckSchema &s);
 /// subsection "geometry": radius and height (shared with mms decks).
 void declare_cylinder_geometry(DeckSchema &s);
-void read_cylinder_geometry(const Deck &deck, double &radius, double &height);
 
-/// The compression test a deck describes (at its own refinement level).
-continuum::CylinderSpec read_cylinder_spec(const Deck &deck);
+/// The cylinder's size [m]; the height lies between R/4 and 16 R, where
+/// the coarse mesh, whose cells are about R wide, still resolves it.
+struct CylinderGeometry
+{
+  double radius = 0; ///< R [m]
+  double height = 0; ///< H [m]
+};
+
+CylinderGeometry parse_cylinder_geometry(const Deck &deck);
+
+/// A cylinder deck, parsed and validated: the compression test at the
+/// deck's own refinement level and what the run makes of it (a single run,
+/// or one run per GCI level with the refinements overridden).
+struct CylinderDeckSpec
+{
+  DeckRecord deck;
+  std::string title;
+  /// The test at discretisation/refinements, with the material's solid;
+  /// its paraview_directory is empty (the run sets it under its output
+  /// directory when paraview is on).
+  continuum::CylinderSpec test;
+  nlohmann::json material; ///< the material's route, inputs and moduli (summary.json)
+  /// Refinement levels of a GCI study, increasing (empty: one run at
+  /// test.refinements; else three or four levels).
+  std::vector<unsigned int> gci_levels;
+  double gci_safety_factor = 1.25; ///< Fs [-]
+  double fit_from = 0, fit_to = 0;  ///< axial strain window of the elastic fit [-]
+  bool paraview = false;            ///< write ParaView frames every test.paraview_every steps
+};
+
+/// Reads and validates every key of a cylinder deck (geometry, material,
+/// loading, discretisation, study levels, fit window, output).
+CylinderDeckSpec parse_cylinder(const Deck &deck);
 
 struct CylinderResult
 {
@@ -48,11 +79,12 @@ struct CylinderResult
   std::vector<GciResult> gci; ///< GCI study only: peak stress, stress at 1 % strain
 };
 
-/// Validates a cylinder deck without running it: the test, the study
-/// levels, the fit window and the material.
-continuum::CylinderSpec parse_cylinder(const Deck &deck);
-
+CylinderResult run_cylinder(const CylinderDeckSpec &spec, const RunOptions &options);
+/// parse_cylinder then run_cylinder.
 CylinderResult run_cylinder(const Deck &deck, const RunOptions &options);
+
+/// The deck keyword of a discretisation model ("axisymmetric" or "3d").
+const char *geometry_keyword(continuum::Geometry geometry);
 
 /// Linear interpolation of y at x in a series with increasing xs; NaN outside.
 double interpolate(const std::vector<double> &xs, const std::vector<double> &ys, double x);

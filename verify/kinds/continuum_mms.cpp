@@ -34,26 +34,33 @@ void declare_mms(DeckSchema &s)
   s.leave();
 }
 
-continuum::MmsSpec read_mms_spec(const Deck &deck)
+MmsDeckSpec parse_mms(const Deck &deck)
 {
-  continuum::MmsSpec spec;
-  read_cylinder_geometry(deck, spec.radius, spec.height);
-  spec.solid = read_continuum_material(deck).solid;
-  spec.variable = deck.text("study/variable") == "time" ? continuum::MmsVariable::time : continuum::MmsVariable::space;
-  spec.geometry = deck.text("study/model") == "3d" ? continuum::Geometry::three_dimensional
+  MmsDeckSpec spec;
+  spec.deck = DeckRecord(deck);
+  spec.title = deck.text("title");
+  continuum::MmsSpec &study = spec.study;
+  const CylinderGeometry geometry = parse_cylinder_geometry(deck);
+  study.radius = geometry.radius;
+  study.height = geometry.height;
+  const ContinuumMaterial material = parse_continuum_material(deck);
+  study.solid = material.solid;
+  spec.material = material.description;
+  study.variable = deck.text("study/variable") == "time" ? continuum::MmsVariable::time : continuum::MmsVariable::space;
+  study.geometry = deck.text("study/model") == "3d" ? continuum::Geometry::three_dimensional
                                                   : continuum::Geometry::axisymmetric;
-  spec.degree = static_cast<unsigned int>(deck.integer("study/degree"));
-  spec.levels.clear();
+  study.degree = static_cast<unsigned int>(deck.integer("study/degree"));
+  study.levels.clear();
   for (const double v : deck.real_list("study/levels"))
   {
-    if (!(v >= 0 && v <= 8 && v == std::floor(v)) || (!spec.levels.empty() && v <= spec.levels.back()))
+    if (!(v >= 0 && v <= 8 && v == std::floor(v)) || (!study.levels.empty() && v <= study.levels.back()))
       deck.fail("study/levels", "expected increasing integers between 0 and 8");
-    spec.levels.push_back(static_cast<unsigned int>(v));
+    study.levels.push_back(static_cast<unsigned int>(v));
   }
-  spec.duration = deck.real("study/duration");
-  spec.time_steps = static_cast<unsigned int>(deck.integer("study/time steps"));
-  spec.refinements = static_cast<unsigned int>(deck.integer("study/refinements"));
-  spec.solver_tolerance = deck.real("study/solver tolerance");
+  study.duration = deck.real("study/duration");
+  study.time_steps = static_cast<unsigned int>(deck.integer("study/time steps"));
+  study.refinements = static_cast<unsigned int>(deck.integer("study/refinements"));
+  study.solver_tolerance = deck.real("study/solver tolerance");
   return spec;
 }
 
@@ -93,30 +100,32 @@ std::vector<ConvergenceTable> mms_tables(const std::vector<continuum::MmsLevel> 
 
 MmsResult run_mms_deck(const Deck &deck, const RunOptions &options)
 {
+  return run_mms_deck(parse_mms(deck), options);
+}
+
+MmsResult run_mms_deck(const MmsDeckSpec &spec, const RunOptions &options)
+{
   const int threads = apply_threads(options);
-  const continuum::MmsSpec spec = read_mms_spec(deck);
+  const continuum::MmsSpec &study = spec.study;
   const bool writer = continuum::parallel_info().rank == 0 && !options.out_dir.empty();
   std::unique_ptr<RunDirectory> dir;
   if (writer)
-    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, 0);
+    dir = std::make_unique<RunDirectory>(options.out_dir, spec.deck, threads, 0);
 
   MmsResult result;
   const auto start = std::chrono::steady_clock::now();
   try
   {
-    result.levels = continuum::run_mms(spec);
+    result.levels = continuum::run_mms(study);
   }
   catch (const continuum::NumericalFailure &f)
   {
-    result.status.fault = true;
-    result.status.time = f.time();
-    result.status.step = f.step();
-    result.status.message = f.what();
+    record_failure(result.status, f);
   }
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const bool space = spec.variable == continuum::MmsVariable::space;
-  const std::vector<ConvergenceTable> tables = mms_tables(result.levels, spec);
+  const bool space = study.variable == continuum::MmsVariable::space;
+  const std::vector<ConvergenceTable> tables = mms_tables(result.levels, study);
   const std::vector<std::string> names = {"displacement_l2", "displacement_h1", "stress_l2", "kelvin_l2"};
   nlohmann::json orders = nlohmann::json::object(), expected = nlohmann::json::object();
   for (std::size_t k = 0; k < names.size(); ++k)
@@ -126,15 +135,15 @@ MmsResult run_mms_deck(const Deck &deck, const RunOptions &options)
   }
   result.summary = {
     {"kind", "mms"},
-    {"title", deck.text("title")},
+    {"title", spec.title},
     {"status", result.status.to_json()},
-    {"variable", deck.text("study/variable")},
-    {"model", deck.text("study/model")},
-    {"degree", spec.degree},
+    {"variable", space ? "space" : "time"},
+    {"model", geometry_keyword(study.geometry)},
+    {"degree", study.degree},
     {"errors", "relative to the norm of the manufactured field, at the final time"},
     {"observed_orders_finest_pair", orders},
     {"expected_orders", expected},
-    {"material", read_continuum_material(deck).description},
+    {"material", spec.material},
     {"wall_seconds", result.status.wall_seconds}};
   if (dir)
   {
@@ -142,7 +151,7 @@ MmsResult run_mms_deck(const Deck &deck, const RunOptions &options)
                   "displacement_h1", "stress_l2", "kelvin_l2", "order_displacement_l2", "order_displacement_h1",
                   "order_stress_l2", "order_kelvin_l2"});
     table.stream_to(dir->path("convergence.csv"),
-                    "demvv mms '" + deck.name() + "': relative errors at the final time; orders against the "
+                    "demvv mms '" + spec.deck.name + "': relative errors at the final time; orders against the "
                                                   "previous level (" + std::string(space ? "h" : "dt") + ")");
     for (std::size_t i = 0; i < result.levels.size(); ++i)
     {
@@ -155,7 +164,7 @@ MmsResult run_mms_deck(const Deck &deck, const RunOptions &options)
         row.push_back(i == 0 ? std::nan("") : t.rows[i].order);
       table.add(row);
     }
-    write_atomically(dir->path("convergence.txt"), continuum::mms_convergence_text(result.levels, spec.variable));
+    write_atomically(dir->path("convergence.txt"), continuum::mms_convergence_text(result.levels, study.variable));
     dir->write_summary(result.summary);
   }
   return result;

@@ -17,14 +17,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
 #include <vector>
 
 namespace verify
 {
 void declare_mms(DeckSchema &s);
 
-/// The study a deck describes.
-continuum::MmsSpec read_mms_spec(const Deck &deck);
+/// An mms deck, parsed and validated.
+struct MmsDeckSpec
+{
+  DeckRecord deck;
+  std::string title;
+  continuum::MmsSpec study;  ///< geometry, the material's solid, levels, duration, steps, solver
+  nlohmann::json material;   ///< the material's route, inputs and moduli (summary.json)
+};
+
+/// Reads and validates every key of an mms deck (geometry, material, study).
+MmsDeckSpec parse_mms(const Deck &deck);
 
 struct MmsResult
 {
@@ -33,9 +43,8 @@ struct MmsResult
   RunStatus status;
 };
 
-/// Validates an mms deck without running it (read_mms_spec).
-inline continuum::MmsSpec parse_mms(const Deck &deck) { return read_mms_spec(deck); }
-
+MmsResult run_mms_deck(const MmsDeckSpec &spec, const RunOptions &options);
+/// parse_mms then run_mms_deck.
 MmsResult run_mms_deck(const Deck &deck, const RunOptions &options);
 
 /// One convergence table per error (displacement L2 and H1, stress, Kelvin

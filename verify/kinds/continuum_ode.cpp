@@ -174,10 +174,7 @@ OdeResult run_burgers_ode(const BurgersOdeSpec &spec, const RunOptions &options)
   }
   catch (const continuum::NumericalFailure &f)
   {
-    result.status.fault = true;
-    result.status.time = f.time();
-    result.status.step = f.step();
-    result.status.message = f.what();
+    record_failure(result.status, f);
   }
   result.status.steps = statistics.steps;
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

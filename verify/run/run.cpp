@@ -51,6 +51,14 @@ void record_fault(RunStatus &status, const dem::NumericalFault &fault)
   status.message = fault.what();
 }
 
+void record_failure(RunStatus &status, const continuum::NumericalFailure &failure)
+{
+  status.fault = true;
+  status.step = failure.step();
+  status.time = failure.time();
+  status.message = failure.what();
+}
+
 RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed)
   : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_path_(deck.path.empty() ? "DECK" : deck.path)
 {

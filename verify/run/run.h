@@ -10,6 +10,7 @@
 
 #include "verify/decks/deck.h"
 
+#include "continuum/numerical_failure.h"
 #include "dem/simulation.h"
 
 #include <nlohmann/json.hpp>
@@ -97,6 +98,9 @@ private:
 
 /// Records a fault into a status (from a NumericalFault).
 void record_fault(RunStatus &status, const dem::NumericalFault &fault);
+/// Records a continuum run's failure into a status: its step (time step or
+/// ODE output), simulated time [s] and message; no particle.
+void record_failure(RunStatus &status, const continuum::NumericalFailure &failure);
 
 /// Threads actually used by OpenMP after applying options.threads.
 int apply_threads(const RunOptions &options);
