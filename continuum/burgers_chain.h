@@ -13,7 +13,7 @@
 //  - elastic: p = K (tr eps), K = E0 / (3 (1 - 2 nu)), or
 //  - the same Burger's shape as in shear ("same shape"): every bulk constant
 //    is K/G times the shear constant, so Poisson's ratio is the same
-//    constant nu at every time scale (SPEC §6, correspondence principle).
+//    constant nu at every time scale.
 // The deck describes both with a Young-type chain (E0, eta_inf, E1, eta1)
 // and the instantaneous Poisson's ratio nu: the shear chain is the Young
 // chain over 2 (1 + nu), the bulk chain (same shape) over 3 (1 - 2 nu).
@@ -22,7 +22,7 @@
 // chain (uniaxial()): its creep compliance is J_G(t)/3 + J_K(t)/9, with
 // J_G, J_K the shear and bulk creep compliances, which is again of the form
 // of eq. 2.15.  That chain, put into eq. 7.18, is the closed form the
-// frictionless cylinder must reproduce (VERIFICATION 20).
+// frictionless cylinder must reproduce (check V20).
 #pragma once
 
 #include <string>

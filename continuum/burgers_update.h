@@ -11,7 +11,7 @@
 //   u_k^{n+1} = (B u_k^n + dt/(2 C1) (f^{n+1} + f^n) + dt g_k) / A                   (3.26)
 // g_k, g_c are step-averaged strain-rate sources added to the Kelvin and
 // Maxwell-dashpot equations; they are zero except for manufactured
-// solutions (VERIFICATION 21).  The update is second order in dt (the
+// solutions (check V21).  The update is second order in dt (the
 // trapezoidal rule), exact when the internal strains are quadratic in time,
 // A-stable but not L-stable: for K1 dt/(2 C1) > 1 the Kelvin strain
 // alternates in sign from step to step, decaying (B/A in (-1, 0)).

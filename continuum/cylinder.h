@@ -5,8 +5,8 @@
 // The bottom platen is fixed, the top one moves down at H x strain rate.
 // Frictionless platens constrain only the axial displacement, so the
 // cylinder stays homogeneous and must reproduce the 1-D closed form
-// (VERIFICATION 20); bonded platens also hold the radial displacement, and
-// the cylinder barrels (no closed form; VERIFICATION 22 estimates its
+// (check V20); bonded platens also hold the radial displacement, and
+// the cylinder barrels (no closed form; check V22 estimates its
 // discretisation error).
 //
 // Every step reports, compression positive: axial strain (platen

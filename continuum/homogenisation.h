@@ -1,4 +1,4 @@
-// From contact constants to continuum moduli (SPEC §6, VERIFICATION 18-19).
+// From contact constants to continuum moduli (checks V18-V19).
 //
 // A priori, affine (Voigt) homogenisation of an isotropic, monodisperse
 // packing of spheres of radius R [m], solid fraction phi, coordination
@@ -8,7 +8,7 @@
 //   G  = phi Z (2 k_n + 3 k_s) / (20 pi R)          shear modulus [Pa]
 //   nu = (k_n - k_s) / (4 k_n + k_s)                Poisson's ratio [-]
 // (Makse et al. 1999; Agnolin & Roux 2007).  Real packings relax
-// non-affinely and are softer; VERIFICATION 18 reports that gap.
+// non-affinely and are softer; check V18 reports that gap.
 //
 // Burger's contacts with one shape (every shear constant = r x the normal
 // one) behave, by the correspondence principle, like elastic contacts with
@@ -17,7 +17,7 @@
 // c_E = E(k_n = 1, k_s = r) [1/m], and nu is the constant (1 - r)/(4 + r):
 // a same-shape Burger's solid whose Young chain is c_E times the contact
 // chain.  The calibrated route replaces c_E by E/k_n measured on an elastic
-// DEM run of the same sample (VERIFICATION 19) and nu by the measured one.
+// DEM run of the same sample (check V19) and nu by the measured one.
 #pragma once
 
 #include "continuum/burgers_chain.h"

@@ -5,7 +5,7 @@
 //
 // Between frictionless platens the cylinder is homogeneous, so every mesh
 // must give this response to solver tolerance (the patch test,
-// VERIFICATION 20); that the response itself converges to the closed form
+// check V20); that the response itself converges to the closed form
 // (eq. 7.18 with BurgersSolid::uniaxial()) is the separate question of the
 // time discretisation.
 //

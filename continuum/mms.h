@@ -1,5 +1,5 @@
 // Code verification of the viscoelastic cylinder by the method of
-// manufactured solutions (VERIFICATION 21; Roache 2002, Salari & Knupp
+// manufactured solutions (check V21; Roache 2002, Salari & Knupp
 // 2000).
 //
 // A displacement u(x, t) = phi(t) U(x), a Kelvin strain

@@ -1,6 +1,6 @@
 // A continuum computation that cannot go on: an ODE or linear solver that
 // fails, or a non-finite result.  The caller keeps its outputs up to `time`
-// and stops with exit code 3 (SPEC §10).
+// and stops with exit code 3.
 #pragma once
 
 #include <stdexcept>

@@ -151,8 +151,8 @@ struct ContactGeometry
 ///   r = v + phi x v + phi x (phi x v) / 2,
 /// then projected onto the new plane.  The turn is exact to third order in
 /// the angle per step and |r| = |v| (1 + O(phi^4)), so no renormalisation
-/// is needed: over a run both errors are second order (VERIFICATION.md item
-/// 4 measures them).  A first-order turn would shrink the part of v normal
+/// is needed: over a run both errors are second order (check V04 measures
+/// them).  A first-order turn would shrink the part of v normal
 /// to phi by |phi|^2/2 per step, a first-order error over a run.
 DEM_HOT_INLINE Vec3 rotate_with_contact_plane(const Vec3 &v, const Vec3 &old_normal,
                                               const Vec3 &new_normal, double twist_angle)

@@ -10,7 +10,7 @@
 //      taken there too.  With the new normal instead, a rigid rotation by
 //      dtheta per step would create a spurious shear increment
 //      d dtheta^2 / 2 per step (first-order error); with the mean it is
-//      O(dtheta^3) (second order, VERIFICATION.md item 4);
+//      O(dtheta^3) (second order, check V04);
 //   3. the law gives trial normal and shear forces (law_*.h);
 //   4. the PFC3D contact bond and slip rules of thesis §3.4.2 apply:
 //        bonded:   tension allowed; if -F_n >= phi_n the bond breaks and both

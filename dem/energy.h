@@ -1,4 +1,4 @@
-// Energy bookkeeping of a DEM run (VERIFICATION.md item 8).
+// Energy bookkeeping of a DEM run (check V08).
 //
 // With W the work done on the balls by walls and held (kinematically driven)
 // balls, and G the work of gravity, conservation reads

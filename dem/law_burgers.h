@@ -17,7 +17,7 @@
 // The scheme is the trapezoidal rule: second order, A-stable, not L-stable.
 // When K_k dt / (2 C_k) > 1, B < 0 and the Kelvin displacement of a relaxing
 // element alternates sign from step to step instead of decaying smoothly
-// (VERIFICATION.md item 14 shows it); the DEM time step is normally far
+// (check V14 shows it); the DEM time step is normally far
 // below that limit.
 //
 // Directions and signs: the normal element is driven by the overlap U

@@ -1,4 +1,4 @@
-// Measurements on a DEM sample (thesis §5.4, SPEC §5).
+// Measurements on a DEM sample (thesis §5.4).
 //
 //  - Measurement spheres (§5.4.1): porosity with overlap correction
 //      n = 1 - V_ball / V_sphere,  V_ball = sum_p V(p in sphere) - V_overlap
@@ -19,7 +19,7 @@
 //  - Fabric tensor: (1/N_c) sum_c n_c (x) n_c over ball-ball contacts; its
 //    deviatoric part is zero for an isotropic packing.
 //
-// Sign convention (SPEC §2): compression positive.  Axial strain
+// Sign convention: compression positive.  Axial strain
 // (H0 - H)/H0 > 0 when shortening; radial strain -(r - r0)/r0, so a bulging
 // sample has negative radial strain and Poisson's ratio is -eps_r / eps_a.
 #pragma once

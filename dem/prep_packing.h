@@ -1,4 +1,4 @@
-// Numerical sample preparation (thesis ch. 5, SPEC §4).
+// Numerical sample preparation (thesis ch. 5).
 //
 // The thesis's procedure, stage by stage, each reported with its figures:
 //

@@ -1,4 +1,4 @@
-// Uniaxial compression between two platens (thesis §6.1, SPEC §5).
+// Uniaxial compression between two platens (thesis §6.1).
 //
 // The top platen moves down at a speed that ramps linearly from zero to its
 // final value over `ramp_time` (thesis §6.1: "the velocity of the upper wall

@@ -3,7 +3,7 @@
 // Simple cubic (spacing 2R, coordination 6, porosity 1 - pi/6) and face-
 // centred cubic (cube edge 2 sqrt(2) R, coordination 12, porosity
 // 1 - pi/(3 sqrt 2)) arrays of touching spheres.  They have closed-form
-// porosity and coordination (VERIFICATION.md item 11), which makes them
+// porosity and coordination (check V11), which makes them
 // legitimate verification samples; they are not the dense random packing of
 // thesis chapter 5, and every run on one says so.
 #pragma once

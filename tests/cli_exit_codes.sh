@@ -1,5 +1,5 @@
 #!/bin/sh
-# The demvv command's exit codes (SPEC §10): 0 success, 2 bad input or usage,
+# The demvv command's exit codes: 0 success, 2 bad input or usage,
 # 3 numerical fault (with outputs kept), and one-line errors.
 demvv="$1"; data="$2"; out=$(mktemp -d)
 fail() { echo "FAIL: $*"; exit 1; }

@@ -79,7 +79,7 @@ std::string read_text(const std::string &path)
 } // namespace
 
 // CVODE's local error control is per step; the global error of these
-// dissipative linear systems is a small multiple of rtol (VERIFICATION 12:
+// dissipative linear systems is a small multiple of rtol (check V12:
 // 10 rtol).
 
 TEST_CASE("CVODE follows eq. 7.18 for a contact pulled at constant velocity", "[continuum][ode]")

@@ -1,5 +1,5 @@
 // Burger's contact laws and the rate laws (thesis §3.4.3, §7.2.2, eq. 4.3,
-// 7.23) at the level of the law: what VERIFICATION.md items 14-17 do not
+// 7.23) at the level of the law: what checks V14-V17 do not
 // already cover through `demvv verify` (test_verification.cpp).
 #include "dem/contact_resolve.h"
 #include "dem/law_burgers.h"

@@ -127,7 +127,7 @@ ContinuumMaterial parse_continuum_material(const Deck &deck)
   const bool same_shape = model == "same shape";
   if (source != "direct" && !same_shape)
     deck.fail("material/model", "expected 'same shape' when material/source is '" + source +
-                                  "' (contact constants map to one Burger's shape in shear and bulk, SPEC §6)");
+                                  "' (contact constants map to one Burger's shape in shear and bulk)");
   if (source == "direct")
   {
     m.solid.young = {deck.real("material/direct/young modulus"), deck.real("material/direct/maxwell viscosity"),
@@ -142,7 +142,7 @@ ContinuumMaterial parse_continuum_material(const Deck &deck)
                                              deck.real("material/affine/particle radius")};
     const double r = deck.real("material/contact/shear ratio");
     m.solid = continuum::affine_burgers_solid(read_contact_chain(deck), r, packing);
-    m.description = {{"source", "affine (Voigt) homogenisation, VERIFICATION 18"},
+    m.description = {{"source", "affine (Voigt) homogenisation, check V18"},
                      {"coordination_number", packing.coordination},
                      {"solid_fraction", packing.solid_fraction},
                      {"particle_radius_m", packing.radius},
@@ -156,7 +156,7 @@ ContinuumMaterial parse_continuum_material(const Deck &deck)
     measured_elasticity(deck, young, poisson, measured_from);
     const double kn = deck.real("material/calibrated/reference normal stiffness");
     m.solid = continuum::calibrated_burgers_solid(read_contact_chain(deck), young, poisson, kn);
-    m.description = {{"source", "calibrated from an elastic run, VERIFICATION 19"},
+    m.description = {{"source", "calibrated from an elastic run, check V19"},
                      {"measured_from", measured_from},
                      {"measured_young_modulus_pa", young},
                      {"measured_poisson_ratio", poisson},

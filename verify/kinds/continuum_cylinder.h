@@ -11,7 +11,7 @@
 // ParaView files in paraview/.
 //
 // With study/gci refinements set to three levels the deck is a solution
-// verification study (VERIFICATION 22): one run per level in level_<N>/
+// verification study (check V22): one run per level in level_<N>/
 // and Roache's GCI (continuum_gci.h) on the peak stress and the stress at
 // 1 % strain in summary.json.
 //

@@ -1,5 +1,5 @@
 // mms decks: a manufactured-solution convergence study of the viscoelastic
-// cylinder (continuum/mms.h, VERIFICATION 21), in space (mesh levels) or in
+// cylinder (continuum/mms.h, check V21), in space (mesh levels) or in
 // time (step halvings).
 //
 // Outputs: convergence.csv (level, mesh, step, relative errors of the
