@@ -1,10 +1,9 @@
-// The DEM run driver and the deck kinds: every case deck parses, a paused
-// or interrupted run resumes bit for bit, walls are lists, and the time
-// step's resolution of contact periods is reported.
+// The deck kinds and the DEM run driver: every case deck parses, walls are
+// lists, and the time step's resolution of contact periods is reported
+// (resuming a run is tested in test_runs.cpp).
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 #include "verify/kinds/scene.h"
-#include "verify/kinds/uniaxial.h"
 #include "verify/run/dem_driver.h"
 
 #include "dem/types.h"
@@ -18,29 +17,6 @@
 namespace
 {
 namespace fs = std::filesystem;
-
-verify::Deck small_uniaxial(const std::string &law)
-{
-  verify::Deck d = verify::Deck::defaults("uniaxial");
-  d.set("sample/diameter", "0.008");
-  d.set("sample/height", "0.008");
-  d.set("bonds/normal strength", "20");
-  d.set("bonds/shear strength", "20");
-  d.set("bonds/strength cov", "0.25");
-  d.set("contact law/law", law);
-  d.set("loading/final strain", "0.004");
-  d.set("output/strain interval", "0.0005");
-  return d;
-}
-
-/// summary.json without what legitimately differs between two runs of the
-/// same deck: wall time, speed, the run's own status line and provenance.
-nlohmann::json physics_of(nlohmann::json s)
-{
-  for (const char *k : {"wall_seconds", "particle_steps_per_second", "status", "provenance"})
-    s.erase(k);
-  return s;
-}
 
 nlohmann::json read_json(const fs::path &p) { return nlohmann::json::parse(verify::read_file(p.string())); }
 } // namespace
@@ -61,62 +37,6 @@ TEST_CASE("every deck in cases/ parses into its kind's spec", "[decks]")
     ++decks;
   }
   CHECK(decks >= 30);
-}
-
-TEST_CASE("a paused run resumed from its checkpoint equals the run that never stopped", "[run][resume]")
-{
-  // The checkpoint holds the whole simulation state (balls, walls, contacts
-  // with their law state, clock, energy ledger) and the driver's (series
-  // with exact doubles, file lengths, cadence): continuing from it repeats
-  // exactly the operations of the uninterrupted run, so every double must
-  // be equal, not close.
-  const std::string law = GENERATE("linear", "burgers");
-  INFO("law " << law);
-  const verify::Deck deck = small_uniaxial(law);
-  const fs::path whole = fs::temp_directory_path() / ("demvv_resume_whole_" + law);
-  const fs::path split = fs::temp_directory_path() / ("demvv_resume_split_" + law);
-  fs::remove_all(whole);
-  fs::remove_all(split);
-  const auto reference = verify::run_uniaxial(deck, {whole.string(), 1, false});
-  REQUIRE(reference.status.steps > 400);
-
-  verify::RunOptions pause{split.string(), 1, false};
-  pause.pause_after = reference.status.steps / 3;
-  const auto first = verify::run_uniaxial(deck, pause);
-  REQUIRE(first.status.paused);
-  CHECK(fs::exists(verify::checkpoint_state_file(split.string())));
-  CHECK(read_json(split / "summary.json")["status"]["state"] == "paused");
-  CHECK_NOTHROW(verify::check_resumable(split.string(), deck));
-
-  verify::RunOptions resume{split.string(), 2, false};
-  resume.resume = true;
-  const auto rest = verify::run_uniaxial(deck, resume);
-  REQUIRE_FALSE(rest.status.fault);
-  CHECK(rest.status.steps == reference.status.steps);
-  REQUIRE(rest.series.rows() == reference.series.rows());
-  for (std::size_t r = 0; r < reference.series.rows(); ++r)
-    CHECK(rest.series.row(r) == reference.series.row(r));
-  for (const char *file : {"series.csv", "bond_breaks.csv"})
-  {
-    INFO(file);
-    CHECK(verify::read_file((split / file).string()) == verify::read_file((whole / file).string()));
-  }
-  CHECK(physics_of(read_json(split / "summary.json")) == physics_of(read_json(whole / "summary.json")));
-  CHECK(read_json(split / "summary.json")["status"]["state"] == "completed");
-}
-
-TEST_CASE("a resume is refused for another deck or a directory without a checkpoint", "[run][resume]")
-{
-  const fs::path dir = fs::temp_directory_path() / "demvv_resume_refused";
-  fs::remove_all(dir);
-  const verify::Deck deck = small_uniaxial("linear");
-  CHECK_THROWS_AS(verify::check_resumable(dir.string(), deck), verify::DeckError);
-  verify::RunOptions pause{dir.string(), 1, false};
-  pause.pause_after = 50;
-  verify::run_uniaxial(deck, pause);
-  verify::Deck other = small_uniaxial("linear");
-  other.set("loading/final strain", "0.005");
-  CHECK_THROWS_WITH(verify::check_resumable(dir.string(), other), Catch::Contains("another deck"));
 }
 
 TEST_CASE("a box of six planes runs and its walls carry the weight of the balls at rest", "[run][walls]")

@@ -1,9 +1,11 @@
-// Whole runs: determinism, thread-count independence, sign conventions, and
-// outputs that stay valid when a run stops on a numerical fault.
+// Whole runs: determinism, thread-count independence, sign conventions,
+// outputs that stay valid when a run stops on a numerical fault, and runs
+// that pause and resume bit for bit.
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 #include "verify/kinds/scene.h"
 #include "verify/kinds/uniaxial.h"
+#include "verify/run/dem_driver.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -16,7 +18,7 @@ namespace
 {
 namespace fs = std::filesystem;
 
-verify::Deck small_uniaxial()
+verify::Deck small_uniaxial(const std::string &law = "linear")
 {
   verify::Deck d = verify::Deck::defaults("uniaxial");
   d.set("sample/diameter", "0.008");
@@ -24,10 +26,22 @@ verify::Deck small_uniaxial()
   d.set("bonds/normal strength", "20");
   d.set("bonds/shear strength", "20");
   d.set("bonds/strength cov", "0.25");
+  d.set("contact law/law", law);
   d.set("loading/final strain", "0.004");
   d.set("output/strain interval", "0.0005");
   return d;
 }
+
+/// summary.json without what legitimately differs between two runs of the
+/// same deck: wall time, speed, the run's own status line and provenance.
+nlohmann::json physics_of(nlohmann::json s)
+{
+  for (const char *k : {"wall_seconds", "particle_steps_per_second", "status", "provenance"})
+    s.erase(k);
+  return s;
+}
+
+nlohmann::json read_json(const fs::path &p) { return nlohmann::json::parse(verify::read_file(p.string())); }
 } // namespace
 
 TEST_CASE("same deck and seed give identical series whatever the thread count", "[run]")
@@ -114,4 +128,60 @@ TEST_CASE("a numerical fault stops the run with a diagnostic and keeps valid out
     ++rows;
   }
   CHECK(rows > 2);
+}
+
+TEST_CASE("a paused run resumed from its checkpoint equals the run that never stopped", "[run][resume]")
+{
+  // The checkpoint holds the whole simulation state (balls, walls, contacts
+  // with their law state, clock, energy ledger) and the driver's (series
+  // with exact doubles, file lengths, cadence): continuing from it repeats
+  // exactly the operations of the uninterrupted run, so every double must
+  // be equal, not close.
+  const std::string law = GENERATE("linear", "burgers");
+  INFO("law " << law);
+  const verify::Deck deck = small_uniaxial(law);
+  const fs::path whole = fs::temp_directory_path() / ("demvv_resume_whole_" + law);
+  const fs::path split = fs::temp_directory_path() / ("demvv_resume_split_" + law);
+  fs::remove_all(whole);
+  fs::remove_all(split);
+  const auto reference = verify::run_uniaxial(deck, {whole.string(), 1, false});
+  REQUIRE(reference.status.steps > 400);
+
+  verify::RunOptions pause{split.string(), 1, false};
+  pause.pause_after = reference.status.steps / 3;
+  const auto first = verify::run_uniaxial(deck, pause);
+  REQUIRE(first.status.paused);
+  CHECK(fs::exists(verify::checkpoint_state_file(split.string())));
+  CHECK(read_json(split / "summary.json")["status"]["state"] == "paused");
+  CHECK_NOTHROW(verify::check_resumable(split.string(), deck));
+
+  verify::RunOptions resume{split.string(), 2, false};
+  resume.resume = true;
+  const auto rest = verify::run_uniaxial(deck, resume);
+  REQUIRE_FALSE(rest.status.fault);
+  CHECK(rest.status.steps == reference.status.steps);
+  REQUIRE(rest.series.rows() == reference.series.rows());
+  for (std::size_t r = 0; r < reference.series.rows(); ++r)
+    CHECK(rest.series.row(r) == reference.series.row(r));
+  for (const char *file : {"series.csv", "bond_breaks.csv"})
+  {
+    INFO(file);
+    CHECK(verify::read_file((split / file).string()) == verify::read_file((whole / file).string()));
+  }
+  CHECK(physics_of(read_json(split / "summary.json")) == physics_of(read_json(whole / "summary.json")));
+  CHECK(read_json(split / "summary.json")["status"]["state"] == "completed");
+}
+
+TEST_CASE("a resume is refused for another deck or a directory without a checkpoint", "[run][resume]")
+{
+  const fs::path dir = fs::temp_directory_path() / "demvv_resume_refused";
+  fs::remove_all(dir);
+  const verify::Deck deck = small_uniaxial("linear");
+  CHECK_THROWS_AS(verify::check_resumable(dir.string(), deck), verify::DeckError);
+  verify::RunOptions pause{dir.string(), 1, false};
+  pause.pause_after = 50;
+  verify::run_uniaxial(deck, pause);
+  verify::Deck other = small_uniaxial("linear");
+  other.set("loading/final strain", "0.005");
+  CHECK_THROWS_WITH(verify::check_resumable(dir.string(), other), Catch::Contains("another deck"));
 }

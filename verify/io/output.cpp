@@ -98,10 +98,20 @@ void CsvSeries::write(const std::vector<double> &row)
     throw std::runtime_error(path_ + ": cannot append a row: " + std::strerror(errno));
 }
 
-Progress::Progress(std::string label)
-  : label_(std::move(label)), enabled_(isatty(fileno(stderr)) != 0),
-    start_(std::chrono::steady_clock::now()), last_(start_)
+Progress::Progress(std::string label, bool wanted, double done_at_start)
+  : label_(std::move(label)), enabled_(wanted && isatty(fileno(stdout)) != 0 && isatty(fileno(stderr)) != 0),
+    done_at_start_(done_at_start), start_(std::chrono::steady_clock::now()), last_(start_)
 {
+}
+
+bool Progress::due() const
+{
+  return enabled_ && std::chrono::steady_clock::now() - last_ >= std::chrono::milliseconds(250);
+}
+
+double Progress::elapsed() const
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
 void Progress::update(double fraction, const std::string &text)
@@ -113,7 +123,8 @@ void Progress::update(double fraction, const std::string &text)
     return;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double eta = fraction > 1e-6 ? elapsed * (1 - fraction) / fraction : 0;
+  const double done = fraction - done_at_start_;
+  const double eta = done > 1e-6 ? elapsed * (1 - fraction) / done : 0;
   std::fprintf(stderr, "\r%s %5.1f%%  %s  elapsed %.0f s, left ~%.0f s   ", label_.c_str(),
                100 * fraction, text.c_str(), elapsed, eta);
   std::fflush(stderr);

@@ -49,17 +49,27 @@ private:
   std::string buffer_;
 };
 
+/// The one-line progress display of a long run: percent done, a few words
+/// of state, time left.  Shown only when standard output and standard error
+/// are terminals (and the run wants it); redrawn at most four times a second.
 class Progress
 {
 public:
-  explicit Progress(std::string label);
+  /// `done_at_start`: the fraction already done when this display starts
+  /// (a resumed run), so that the time left is estimated from this leg.
+  explicit Progress(std::string label, bool wanted = true, double done_at_start = 0);
+  /// True when update() would redraw: callers compose the text only then.
+  bool due() const;
   /// fraction in [0, 1]; the text follows the percentage.
   void update(double fraction, const std::string &text);
+  /// Seconds since the display started.
+  double elapsed() const;
   void finish();
 
 private:
   std::string label_;
   bool enabled_;
+  double done_at_start_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 

@@ -6,8 +6,6 @@
 
 #include "dem/types.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -70,50 +68,6 @@ double exact_value(const nlohmann::json &j)
     return std::nan("");
   return s == "inf" ? INFINITY : -INFINITY;
 }
-
-/// The one-line progress display: percent done, the protocol's state,
-/// particle-steps per second and the time left.  Shown only when standard
-/// output is a terminal (and not with --quiet); updated four times a second.
-class ProgressLine
-{
-public:
-  ProgressLine(std::string label, bool wanted)
-    : label_(std::move(label)), enabled_(wanted && isatty(STDOUT_FILENO) && isatty(STDERR_FILENO)),
-      start_(std::chrono::steady_clock::now()), last_(start_)
-  {
-  }
-
-  void update(const dem::Simulation &sim, const DemProtocol &protocol, long steps_at_start, double fraction_at_start)
-  {
-    if (!enabled_)
-      return;
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::milliseconds(250))
-      return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double fraction = std::clamp(protocol.fraction_done(sim), 0.0, 1.0);
-    const double rate = double(sim.particles().size()) * double(sim.steps() - steps_at_start) / elapsed;
-    const double done = fraction - fraction_at_start;
-    const double left = done > 1e-9 ? elapsed * (1 - fraction) / done : 0;
-    std::fprintf(stderr, "\r%s %5.1f%%  %s  %.3g particle-steps/s  left ~%.0f s   ", label_.c_str(), 100 * fraction,
-                 protocol.state_text(sim).c_str(), rate, left);
-    std::fflush(stderr);
-  }
-
-  void finish()
-  {
-    if (!enabled_)
-      return;
-    std::fprintf(stderr, "\r%*s\r", 120, "");
-    std::fflush(stderr);
-  }
-
-private:
-  std::string label_;
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_, last_;
-};
 
 /// The driver's part of a step: the output cadence, ParaView frames and the
 /// bond-break log, around the protocol's own hooks.
@@ -374,8 +328,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   }
 
   const long steps_at_start = sim.steps();
-  const double fraction_at_start = protocol.fraction_done(sim);
-  ProgressLine progress(protocol.label(), options.progress);
+  Progress progress(protocol.label(), options.progress, std::clamp(protocol.fraction_done(sim), 0.0, 1.0));
   StopSignals signals;
   const auto start = std::chrono::steady_clock::now();
   auto last_checkpoint = start;
@@ -405,7 +358,13 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
           last_checkpoint = now;
         }
       }
-      progress.update(sim, protocol, steps_at_start, fraction_at_start);
+      if (progress.due())
+      {
+        const double rate = double(sim.particles().size()) * double(sim.steps() - steps_at_start) / progress.elapsed();
+        char speed[48];
+        std::snprintf(speed, sizeof speed, "  %.3g particle-steps/s", rate);
+        progress.update(std::clamp(protocol.fraction_done(sim), 0.0, 1.0), protocol.state_text(sim) + speed);
+      }
     }
   }
   catch (const dem::NumericalFault &f)
