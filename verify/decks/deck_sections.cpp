@@ -77,9 +77,10 @@ void declare_rate(DeckSchema &s)
   s.real("temperature", 283, 0, inf, "K",
          "Test temperature T of the temperature-compensated strain rate (thesis eq. 4.3; reference 283 K).", true);
   s.real("physical strain rate", 0, 0, inf, "1/s",
-         "Strain rate of the test the run represents; 0: the run's own rate.  When it differs from the run "
-         "rate, both Burger's viscosities are multiplied by physical / run (viscosity scaling, thesis §7.3, "
-         "eq. 7.21) and rate-dependent properties use the physical rate.");
+         "Strain rate of the test the run represents; 0: the run's own rate.  Both Burger's viscosities are "
+         "multiplied by rate_T / run rate, rate_T the temperature-compensated physical rate (viscosity scaling, "
+         "thesis §7.3 and §7.5.3, eq. 7.21 with eq. 4.3; at 283 K rate_T is the physical rate), and "
+         "rate-dependent properties use the physical rate at the temperature.");
   s.real("run strain rate", 0, 0, inf, "1/s",
          "Strain rate actually simulated, for decks without a loading rate of their own (scenes); uniaxial "
          "decks take it from their loading.");
@@ -103,6 +104,7 @@ nlohmann::json RateScaling::to_json() const
 {
   return {{"temperature_k", temperature},
           {"physical_strain_rate_per_s", physical_rate},
+          {"temperature_compensated_rate_per_s", compensated_rate},
           {"run_strain_rate_per_s", run_rate},
           {"viscosity_factor", viscosity_factor},
           {"bond_strength_factor", strength_factor},
@@ -131,8 +133,12 @@ RateScaling RateSpec::scaling(double loading_rate) const
                     "': expected the simulated strain rate (> 0) when a physical strain rate is given");
   if (r.physical_rate == 0)
     r.physical_rate = r.run_rate;
+  // Temperature acts through the temperature-compensated rate (eq. 4.3): a
+  // test at T stands for one at rate_T at T_0, so the viscosities are
+  // scaled to rate_T (thesis §7.5.3).  At T_0 the factor is exactly 1.
+  r.compensated_rate = dem::RateLaw{}.compensated_rate(r.physical_rate, r.temperature);
   if (r.physical_rate > 0)
-    r.viscosity_factor = dem::viscosity_scale(r.physical_rate, r.run_rate);
+    r.viscosity_factor = dem::viscosity_scale(r.compensated_rate, r.run_rate);
   if (dependence != "none")
   {
     if (!(r.physical_rate > 0))

@@ -26,8 +26,9 @@ struct RateScaling
 {
   double temperature = 283;     ///< K
   double physical_rate = 0;     ///< 1/s, the test being represented
+  double compensated_rate = 0;  ///< 1/s, rate_T of eq. 4.3 at the physical rate and temperature
   double run_rate = 0;          ///< 1/s, the test being run
-  double viscosity_factor = 1;  ///< on both viscosities, physical / run (eq. 7.21)
+  double viscosity_factor = 1;  ///< on both viscosities, rate_T / run (eq. 7.21 at the compensated rate, §7.5.3)
   double strength_factor = 1;   ///< on bond strengths (eq. 7.23 at the physical rate)
   double stiffness_factor = 1;  ///< on contact stiffnesses (eq. 7.23 at the physical rate)
 
