@@ -9,7 +9,7 @@ cases=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 deck=$cases/s01_box_six_planes/case.prm
-long="--set run/duration=0.1 --threads 1 --quiet"
+long="--set run/duration=0.3 --threads 1 --quiet"
 fail() { echo "FAIL: $*"; exit 1; }
 
 "$demvv" run "$deck" $long --out "$work/whole" 2>/dev/null || fail "the uninterrupted run failed"
@@ -34,7 +34,7 @@ for signal in INT TERM; do
   grep -q '"state": "interrupted"' "$dir/summary.json" || fail "$signal: summary.json does not say interrupted"
   [ -f "$dir/checkpoint/driver.json" ] || fail "$signal: no checkpoint"
   grep -q -- "--resume" "$work/err_$signal" || fail "$signal: the message does not say how to resume"
-  "$demvv" run "$deck" $long --set run/duration=0.2 --resume "$dir" 2>"$work/err_other"
+  "$demvv" run "$deck" $long --set run/duration=0.4 --resume "$dir" 2>"$work/err_other"
   [ $? -eq 2 ] || fail "$signal: a resume with another deck was not refused with exit code 2"
   grep -q "another deck" "$work/err_other" || fail "$signal: the refusal does not say why: $(cat "$work/err_other")"
   "$demvv" run "$deck" $long --resume "$dir" 2>/dev/null || fail "$signal: the resumed run failed"
