@@ -4,6 +4,7 @@
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 #include "verify/kinds/scene.h"
+#include "verify/kinds/uniaxial.h"
 #include "verify/run/dem_driver.h"
 
 #include "dem/types.h"
@@ -108,4 +109,11 @@ TEST_CASE("repeated deck sections: any number of instances, each named, in the o
   CHECK(deck.resolved().find("subsection plane 7") != std::string::npos);
   CHECK_THROWS_WITH(deck.set("walls/plane 7/colour", "red"), Catch::Contains("unknown key"));
   CHECK(verify::Deck::defaults("scene").documented().find("Repeatable section 'plane'") != std::string::npos);
+}
+
+TEST_CASE("a uniaxial deck naming a sample file that does not exist is refused at parse time", "[decks]")
+{
+  verify::Deck deck = verify::Deck::from_file(std::string(DEMVV_CASES) + "/t61_damage/case.prm");
+  deck.set("sample/file", "no_such_sample.json");
+  CHECK_THROWS_WITH(verify::parse_uniaxial(deck), Catch::Contains("sample/file") && Catch::Contains("no such file"));
 }

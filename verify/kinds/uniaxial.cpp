@@ -10,9 +10,8 @@
 #include "dem/specimen.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -198,7 +197,7 @@ Setup sample_setup(const UniaxialSpec &spec)
   spec.bonds.finish(s.sim->contacts(), s.sim->particles(), s.rate);
   s.cell = std::move(sample.cell);
   std::ostringstream d;
-  d << "prepared sample " << spec.sample_file << " of " << s.sim->particles().size() << " balls";
+  d << "prepared sample " << spec.sample_name << " of " << s.sim->particles().size() << " balls";
   if (preparation.contains("solid_fraction_cell"))
     d << " (cell solid fraction " << preparation["solid_fraction_cell"].get<double>() << ", coordination "
       << preparation["coordination_number"].get<double>() << ")";
@@ -426,6 +425,10 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
     if (deck.text("sample/file").empty())
       deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
     spec.sample_file = deck.file("sample/file");
+    spec.sample_name = deck.text("sample/file");
+    if (!std::filesystem::is_regular_file(spec.sample_file))
+      deck.fail("sample/file", "no such file (" + spec.sample_file +
+                                 "): expected a sample file (.json) or a prepare deck (.prm), relative to the deck");
   }
   dem::parse_lattice(deck.text("sample/lattice"), spec.lattice);
   spec.ball_radius = deck.real("sample/ball radius");

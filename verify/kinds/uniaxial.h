@@ -42,6 +42,7 @@ struct UniaxialSpec
   // sample
   bool from_file = false;        ///< a prepared sample (else a lattice)
   std::string sample_file;       ///< resolved against the deck
+  std::string sample_name;       ///< as the deck writes it (for descriptions)
   dem::Lattice lattice = dem::Lattice::face_centred_cubic;
   double ball_radius = 0;        ///< m
   double diameter = 0, height = 0; ///< m, lattice target size
