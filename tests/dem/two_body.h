@@ -2,7 +2,7 @@
 // rule 8), on dem/ alone: demvv_dem_tests links nothing from verify/.
 #pragma once
 
-#include "dem/simulation.h"
+#include "dem/small_systems.h"
 
 #include <string_view>
 
@@ -10,31 +10,14 @@ namespace demtest
 {
 using dem::Vec3;
 
-inline dem::BallSpec ball(const Vec3 &x, double r, double kn, double ks = 0, double mu = 0)
-{
-  dem::BallSpec b;
-  b.position = x;
-  b.radius = r;
-  b.kn = kn;
-  b.ks = ks;
-  b.friction = mu;
-  return b;
-}
-
-/// Settings for closed-form checks: no damping, no gravity; fixed_dt > 0 fixes the step.
-inline dem::SimulationSettings undamped(double fixed_dt = 0)
-{
-  dem::SimulationSettings s;
-  s.local_damping = 0;
-  s.fixed_time_step = fixed_dt;
-  return s;
-}
+using dem::small_systems::ball;
+using dem::small_systems::undamped;
 
 /// A simulation of the law `law` with default constants (Table 7.2 for Burger's).
 inline dem::Simulation make_sim(dem::ParticleStore p, dem::WallSet w = {}, dem::SimulationSettings s = undamped(),
                                 std::string_view law = "linear")
 {
-  return dem::Simulation(std::move(p), std::move(w), dem::make_contact_model(law, {}), s);
+  return dem::small_systems::simulation(std::move(p), std::move(w), s, law);
 }
 
 /// Two balls along x, the second one at centre distance d from the first.

@@ -32,7 +32,7 @@ dem::BallSpec ball_at(const Vec3 &x, double r = R, double kn = KN, double ks = K
 
 dem::Simulation simulation(dem::ParticleStore p, dem::SimulationSettings s, dem::WallSet w = {})
 {
-  return linear_simulation(std::move(p), s, std::move(w));
+  return dem::small_systems::simulation(std::move(p), std::move(w), s);
 }
 
 void bond_all_touching(dem::Simulation &sim, double strength = 1e9)

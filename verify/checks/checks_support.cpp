@@ -43,31 +43,6 @@ double max_abs(const std::vector<double> &v)
   return m;
 }
 
-dem::BallSpec ball(const dem::Vec3 &x, double r, double kn, double ks, double mu)
-{
-  dem::BallSpec b;
-  b.position = x;
-  b.radius = r;
-  b.kn = kn;
-  b.ks = ks;
-  b.friction = mu;
-  return b;
-}
-
-dem::SimulationSettings undamped(double fixed_dt, bool allow_unstable)
-{
-  dem::SimulationSettings s;
-  s.local_damping = 0;
-  s.fixed_time_step = fixed_dt;
-  s.allow_unstable_step = allow_unstable;
-  return s;
-}
-
-dem::Simulation linear_simulation(dem::ParticleStore p, dem::SimulationSettings s, dem::WallSet w)
-{
-  return dem::Simulation(std::move(p), std::move(w), dem::make_contact_model("linear", {}), s);
-}
-
 std::string num(double v)
 {
   std::ostringstream o;

@@ -7,6 +7,7 @@
 #include "verify/io/series.h"
 
 #include "dem/simulation.h"
+#include "dem/small_systems.h"
 
 #include <string>
 #include <vector>
@@ -30,9 +31,7 @@ double max_abs(const std::vector<double> &v);
 /// Formats a number for notes.
 std::string num(double v);
 
-/// Small systems in a line or three (STYLE rule 8), for checks and tests.
-dem::BallSpec ball(const dem::Vec3 &x, double r, double kn, double ks = 0, double mu = 0);
-/// Settings for closed-form checks: no damping, no gravity; fixed_dt > 0 fixes the step.
-dem::SimulationSettings undamped(double fixed_dt = 0, bool allow_unstable = false);
-dem::Simulation linear_simulation(dem::ParticleStore p, dem::SimulationSettings s, dem::WallSet w = {});
+/// Small systems in a line or three (dem/small_systems.h).
+using dem::small_systems::ball;
+using dem::small_systems::undamped;
 } // namespace verify
