@@ -189,3 +189,23 @@ TEST_CASE("the temperature-compensated rate drives the viscosity scaling (thesis
   CHECK(factor(0, 0.02) == Approx(0.02 * std::exp(13.4e3 * (1.0 / 273 - 1.0 / 283)) / 0.5).epsilon(1e-12));
   CHECK(one_figure(factor(0, 0.02)) == Approx(0.2).epsilon(1e-12));
 }
+
+TEST_CASE("numbers a double cannot hold are refused with the one-line error, not an exception", "[decks]")
+{
+  // 1e-400 underflows, 1e-310 is subnormal (std::stod throws out_of_range
+  // on both), 1e400 overflows: each is refused naming the key and the value.
+  for (const char *v : {"1e-400", "1e-310", "1e400"})
+  {
+    CAPTURE(v);
+    verify::Deck d = verify::Deck::defaults("uniaxial");
+    CHECK_THROWS_WITH(d.set("motion/fixed time step", v),
+                      Catch::Contains("motion/fixed time step") && Catch::Contains(v) && Catch::Contains("normal double"));
+    CHECK_THROWS_WITH(d.set("motion/gravity", std::string("0, 0, ") + v), Catch::Contains("motion/gravity"));
+    CHECK_THROWS_AS(verify::Deck::from_file(std::string(DEMVV_CASES) + "/t61_damage/case.prm",
+                                            {std::string("loading/final strain=") + v}),
+                    verify::DeckError);
+  }
+  verify::Deck d = verify::Deck::defaults("uniaxial");
+  CHECK_NOTHROW(d.set("motion/fixed time step", "0"));
+  CHECK_NOTHROW(d.set("motion/fixed time step", "2.3e-308"));
+}

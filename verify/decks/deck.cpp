@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -59,6 +61,22 @@ std::size_t edit_distance(const std::string &a, const std::string &b)
   return row[b.size()];
 }
 
+/// True unless the text is a number a double cannot hold as a normal value
+/// (1e-400, the subnormal 1e-310, 1e400): such numbers would be silently
+/// rounded, or abort std::stod later.  Text that is no number at all is left
+/// to the pattern, which names what was expected.
+bool normal_double(const std::string &text)
+{
+  char *end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str())
+    return true;
+  if (errno == ERANGE)
+    return false;
+  return v == 0 || !std::isfinite(v) || std::abs(v) >= std::numeric_limits<double>::min();
+}
+
 /// Where a value came from, for error messages: "deck.prm:12" or "--set".
 struct Origin
 {
@@ -85,6 +103,7 @@ struct Deck::Impl final : DeckSchema
     std::string value;
     bool positive = false; // real with an exclusive lower bound
     double min = 0;
+    bool numeric = false;  // real, vector or list of reals: every item must be a normal double
   };
 
   /// A repeated section: where it may appear and how an instance is declared.
@@ -149,6 +168,7 @@ struct Deck::Impl final : DeckSchema
     Entry &e = entries[full(name)];
     e.positive = min_exclusive;
     e.min = min;
+    e.numeric = true;
   }
   void integer(const std::string &name, long value, long min, long max, const std::string &help) override
   {
@@ -177,6 +197,7 @@ struct Deck::Impl final : DeckSchema
   {
     add(name, value, std::make_unique<Patterns::List>(Patterns::Double(), 3, 3, ","),
         "three comma-separated numbers (" + unit + ")", help + " [" + unit + "]");
+    entries[full(name)].numeric = true;
   }
   void real_list(const std::string &name, const std::string &value, unsigned min_len, unsigned max_len,
                  const std::string &unit, const std::string &help) override
@@ -185,6 +206,7 @@ struct Deck::Impl final : DeckSchema
         "a comma-separated list of " + std::to_string(min_len) + " to " + std::to_string(max_len) +
           " numbers (" + unit + ")",
         help + " [" + unit + "]");
+    entries[full(name)].numeric = true;
   }
 
   void repeated(const std::string &keyword, void (*declare)(DeckSchema &), const std::string &help) override
@@ -260,6 +282,12 @@ struct Deck::Impl final : DeckSchema
                   "` lists the keys of a " + kind + " deck");
     Entry &e = it->second;
     const std::string value = trim(raw);
+    if (e.numeric)
+      for (const std::string &item : split(value, ','))
+        if (!item.empty() && !normal_double(item))
+          reject(o, "key '" + key + "' has value '" + value + "': '" + item +
+                      "' is not a normal double (0, or a magnitude between 2.2e-308 and 1.8e308): expected " +
+                      e.expected);
     bool ok = e.pattern->match(value);
     if (ok && e.positive)
       ok = std::stod(value) > e.min;
