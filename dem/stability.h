@@ -64,6 +64,18 @@ inline double critical_step(double row_bound)
 {
   return row_bound > 0 ? 2.0 / std::sqrt(row_bound) : infinity;
 }
+
+/// Frequency error of centred differences on a linear oscillator resolved
+/// by N steps per period (theta = omega dt = 2 pi / N): the scheme runs at
+/// omega~ = (2 / dt) asin(omega dt / 2) (its exact discrete dispersion), so
+/// periods and contact durations come out short by omega~ / omega - 1 =
+/// (2 / theta) asin(theta / 2) - 1: 16 % at N = 3.93, 1 % at N = 12.8.
+/// Unstable (1 returned) at theta >= 2, N <= pi.
+inline double centred_difference_frequency_error(double steps_per_period)
+{
+  const double theta = 2 * pi / steps_per_period;
+  return theta >= 2 ? 1.0 : (2 / theta) * std::asin(theta / 2) - 1;
+}
 class Simulation;
 
 /// Largest eigenvalue of M^-1 K for the force-carrying contacts of a

@@ -4,6 +4,7 @@
 #include "verify/io/paraview.h"
 #include "verify/io/sample_file.h"
 
+#include "dem/stability.h"
 #include "dem/types.h"
 
 #include <algorithm>
@@ -246,10 +247,7 @@ void ContactResolution::observe(const dem::Simulation &sim)
 
 double ContactResolution::period_error() const
 {
-  if (!std::isfinite(steps_per_period_))
-    return 0;
-  const double theta = 2 * dem::pi / steps_per_period_;
-  return theta >= 2 ? 1.0 : (2 / theta) * std::asin(theta / 2) - 1;
+  return std::isfinite(steps_per_period_) ? dem::centred_difference_frequency_error(steps_per_period_) : 0;
 }
 
 nlohmann::json ContactResolution::smallest_bound_json() const
