@@ -532,10 +532,16 @@ std::array<double, 3> Deck::vector3(const std::string &key) const
 
 DeckRecord::DeckRecord(const Deck &deck) : path(deck.path()), name(deck.name()), resolved(deck.resolved()) {}
 
+void fail_key(const std::string &deck_path, const std::string &key, const std::string &value,
+              const std::string &expected)
+{
+  throw DeckError((deck_path.empty() ? std::string("deck") : deck_path) + ": key '" + key + "' has value '" + value +
+                  "': " + expected);
+}
+
 void DeckRecord::fail(const std::string &key, const std::string &value, const std::string &expected) const
 {
-  throw DeckError((path.empty() ? std::string("deck") : path) + ": key '" + key + "' has value '" + value +
-                  "': " + expected);
+  fail_key(path, key, value, expected);
 }
 
 std::vector<std::string> Deck::instances(const std::string &section, const std::string &keyword) const
@@ -556,8 +562,7 @@ std::string Deck::file(const std::string &key) const
 
 void Deck::fail(const std::string &key, const std::string &expected) const
 {
-  const std::string where = impl_->path.empty() ? "deck" : impl_->path;
-  throw DeckError(where + ": key '" + key + "' has value '" + impl_->at(key).value + "': " + expected);
+  fail_key(impl_->path, key, impl_->at(key).value, expected);
 }
 
 std::string Deck::resolved() const

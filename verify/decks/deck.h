@@ -87,6 +87,11 @@ const DeckKind *find_deck_kind(std::string_view name);
 
 class Deck;
 
+/// The one-line error for a key of a deck: "FILE: key 'KEY' has value
+/// 'VALUE': EXPECTED" ("deck" when the deck has no file).
+[[noreturn]] void fail_key(const std::string &deck_path, const std::string &key, const std::string &value,
+                           const std::string &expected);
+
 /// What a run keeps of its deck once the deck is parsed into a spec: where
 /// it came from and its resolved text (deck.prm, provenance, resume), and a
 /// way to name a key of it in a one-line error found later in the run.

@@ -114,7 +114,7 @@ nlohmann::json RateScaling::to_json() const
 RateSpec RateSpec::parse(const Deck &d)
 {
   RateSpec r;
-  r.deck = d.path().empty() ? "deck" : d.path();
+  r.deck = d.path();
   r.temperature = d.real("rate/temperature");
   r.physical_rate = d.real("rate/physical strain rate");
   r.run_rate = d.real("rate/run strain rate");
@@ -129,8 +129,8 @@ RateScaling RateSpec::scaling(double loading_rate) const
   r.run_rate = loading_rate > 0 ? loading_rate : run_rate;
   r.physical_rate = physical_rate;
   if (r.physical_rate > 0 && !(r.run_rate > 0))
-    throw DeckError(deck + ": key 'rate/run strain rate' has value '" + format_number(run_rate) +
-                    "': expected the simulated strain rate (> 0) when a physical strain rate is given");
+    fail_key(deck, "rate/run strain rate", format_number(run_rate),
+             "expected the simulated strain rate (> 0) when a physical strain rate is given");
   if (r.physical_rate == 0)
     r.physical_rate = r.run_rate;
   // Temperature acts through the temperature-compensated rate (eq. 4.3): a
@@ -142,8 +142,8 @@ RateScaling RateSpec::scaling(double loading_rate) const
   if (dependence != "none")
   {
     if (!(r.physical_rate > 0))
-      throw DeckError(deck + ": key 'rate/dependence' has value '" + dependence +
-                      "': expected a strain rate (rate/physical strain rate or the loading) for it");
+      fail_key(deck, "rate/dependence", dependence,
+               "expected a strain rate (rate/physical strain rate or the loading) for it");
     r.strength_factor = dem::RateLaw{}.strength_factor(r.physical_rate, r.temperature);
     if (dependence == "bonds and stiffness")
       r.stiffness_factor = r.strength_factor;
