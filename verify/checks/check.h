@@ -22,6 +22,8 @@
 // disagree.
 #pragma once
 
+#include "verify/plot/figure.h"
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -101,6 +103,9 @@ struct CheckOutcome
 {
   std::vector<Metric> metrics;
   std::vector<ConvergenceTable> tables;
+  /// Measured curves beside their reference (closed form, law, continuum),
+  /// drawn in report.html; convergence tables get their figure there too.
+  std::vector<Figure> figures;
   std::vector<std::string> notes;
   bool pass() const;
 };

@@ -4,6 +4,7 @@
 #include "verify/checks/check.h"
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
+#include "verify/plot/run_figures.h"
 #include "verify/report/report.h"
 #include "verify/run/dem_driver.h"
 
@@ -29,6 +30,23 @@ void tell(const std::string &deck_path, const std::string &out_dir, const RunSta
     std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
               << out_dir << "\n";
 }
+
+/// Draws a run's figures; one line for what could not be drawn.
+void draw_run_figures(const std::string &run_dir, bool list_drawn)
+{
+  std::size_t drawn = 0;
+  std::string missing;
+  for (const DrawnFigure &f : plot_run(run_dir))
+  {
+    drawn += f.drawn() ? 1 : 0;
+    if (!f.drawn())
+      missing += (missing.empty() ? "" : "; ") + f.name + ": " + f.problem;
+  }
+  if (list_drawn)
+    std::cerr << "demvv: " << drawn << " figure" << (drawn == 1 ? "" : "s") << " in " << run_dir << "/plots\n";
+  if (!missing.empty())
+    std::cerr << "demvv: figures not drawn: " << missing << "\n";
+}
 } // namespace
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
@@ -41,8 +59,15 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   if (o.resume)
     check_resumable(o.out_dir, deck);
   const RunStatus status = kind->run(deck, o);
+  draw_run_figures(o.out_dir, false);
   tell(deck_path, o.out_dir, status);
   return status.exit_code();
+}
+
+int command_plot(const std::string &run_dir)
+{
+  draw_run_figures(run_dir, true);
+  return 0;
 }
 
 int command_defaults(const std::string &kind)
@@ -62,14 +87,12 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
   nlohmann::json prov = provenance(used, 0, "");
   prov["mode"] = full ? "full" : "quick";
   prov["cases_dir"] = ctx.cases_dir;
-  make_directories(out_dir);
-  write_atomically(out_dir + "/report.json", report_json(records, prov).dump(2) + "\n");
-  write_atomically(out_dir + "/report.md", report_markdown(records, prov));
+  write_reports(records, prov, out_dir);
   std::size_t failed = 0;
   for (const CheckRecord &r : records)
     failed += r.pass() ? 0 : 1;
   std::cerr << "demvv: " << records.size() - failed << " of " << records.size() << " checks pass; report in "
-            << out_dir << "/report.md\n";
+            << out_dir << "/report.html (and report.md, report.json)\n";
   return failed ? 1 : 0;
 }
 

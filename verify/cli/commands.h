@@ -12,6 +12,10 @@ namespace verify
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides,
                 const RunOptions &options);
 
+/// demvv plot: (re)draws the figures of a run directory into RUN_DIR/plots;
+/// returns 0 (figures gnuplot could not draw are listed, not fatal).
+int command_plot(const std::string &run_dir);
+
 /// demvv defaults: prints the documented deck of a kind.
 int command_defaults(const std::string &kind);
 

@@ -5,6 +5,7 @@
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
 //   demvv bench [--particles N] [--steps N] [--threads N]
 //   demvv catalogue [--out FILE]
+//   demvv plot RUN_DIR
 //
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
 // usage; 3 the simulation stopped on a numerical fault; 130 / 143 the run
@@ -77,6 +78,10 @@ int main(int argc, char **argv)
                         "A prepared sample (sample.json or a prepare deck, prepared once and cached) instead of the "
                         "lattice; --particles is then ignored");
 
+  std::string plot_dir;
+  auto *plot_cmd = app.add_subcommand("plot", "Draw (again) the figures of a run directory into RUN_DIR/plots (gnuplot, SVG)");
+  plot_cmd->add_option("RUN_DIR", plot_dir, "A run directory (it holds summary.json)")->required();
+
   std::string catalogue_out;
   auto *catalogue_cmd =
     app.add_subcommand("catalogue", "Write the verification catalogue (Markdown) generated from the check registry");
@@ -121,6 +126,8 @@ int main(int argc, char **argv)
         throw verify::DeckError("--quick and --full exclude each other");
       return verify::command_verify(full, only, out_dir.empty() ? "runs/verify" : out_dir, cases_dir, threads);
     }
+    if (plot_cmd->parsed())
+      return verify::command_plot(plot_dir);
     if (catalogue_cmd->parsed())
       return verify::command_catalogue(catalogue_out);
   }

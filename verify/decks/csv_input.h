@@ -18,6 +18,7 @@ public:
   const std::string &path() const { return path_; }
   std::size_t rows() const { return rows_.size(); }
   bool has(const std::string &column) const { return index(column) >= 0; }
+  const std::vector<std::string> &header() const { return header_; }
   /// Value of a column in row r; `fallback` if the column is absent.
   double get(std::size_t r, const std::string &column, double fallback) const;
   /// Value of a required column (DeckError if the table lacks it).

@@ -1,4 +1,14 @@
-// The verification report: report.md for people, report.json for scripts.
+// The verification report: report.html and report.md for people,
+// report.json for scripts.
+//
+// report.html is one self-contained page (figures inline as SVG data, no
+// network): a verdict table, the definitions of the V&V categories and
+// tolerance classes, then a section per check with its requirement,
+// reference, category, run time, figures (each convergence study on log-log
+// axes with the theoretical slope, the check's own curves beside their
+// reference, and every metric's value against its tolerance), the metrics
+// table and notes.  A small script marks any figure the browser could not
+// render, which the browser test reads back.
 //
 // report.md has a requirements table (id, requirement, the tolerance classes
 // its metrics use, V&V category, reference, verdict, runtime), a metrics
@@ -8,9 +18,11 @@
 #pragma once
 
 #include "verify/checks/check.h"
+#include "verify/plot/gnuplot.h"
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +39,15 @@ struct CheckRecord
 
 nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
 std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
+
+/// The figures of one check in report.html (names start with the check's id).
+std::vector<Figure> check_figures(const CheckRecord &record);
+/// report.html, given each figure drawn (by name).
+std::string report_html(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
+                        const std::map<std::string, DrawnFigure> &drawn);
+/// Writes report.json, report.md, figures/ (scripts, data, SVG) and report.html into out_dir.
+void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
+                   const std::string &out_dir);
 
 /// Runs the checks whose id or title contains `only` (all if empty).
 std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose);

@@ -1,0 +1,251 @@
+#include "verify/plot/gnuplot.h"
+
+#include "verify/io/output.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <fcntl.h>
+#include <sstream>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace verify
+{
+Curve curve(std::string title, std::vector<double> x, std::vector<double> y, CurveStyle style)
+{
+  Curve c;
+  c.title = std::move(title);
+  c.x = std::move(x);
+  c.y = std::move(y);
+  c.style = style;
+  return c;
+}
+
+Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale,
+                   double y_scale, CurveStyle style)
+{
+  Curve c;
+  c.title = std::move(title);
+  c.file = std::move(file);
+  c.x_column = std::move(x_column);
+  c.y_column = std::move(y_column);
+  c.x_scale = x_scale;
+  c.y_scale = y_scale;
+  c.style = style;
+  return c;
+}
+
+namespace
+{
+/// A gnuplot single-quoted string ('' stands for one quote inside).
+std::string quoted(const std::string &s)
+{
+  std::string out = "'";
+  for (char c : s)
+    out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string number(double v)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+/// gnuplot's `using` item for column `c` (a number or a name) times `scale`.
+std::string using_item(const std::string &c, double scale)
+{
+  if (scale == 1 && c.find_first_not_of("0123456789") == std::string::npos)
+    return c;
+  const std::string value =
+    c.find_first_not_of("0123456789") == std::string::npos ? "$" + c : "column(" + quoted(c) + ")";
+  return "(" + value + (scale == 1 ? "" : "*" + number(scale)) + ")";
+}
+
+std::string style_clause(CurveStyle s, int colour)
+{
+  const std::string lc = " lc " + std::to_string(colour);
+  switch (s)
+  {
+  case CurveStyle::line:
+    return "with lines lw 2" + lc;
+  case CurveStyle::dashed:
+    return "with lines lw 2 dt 2" + lc;
+  case CurveStyle::points:
+    return "with points pt 7 ps 0.9" + lc;
+  case CurveStyle::markers_and_line:
+    return "with linespoints lw 2 pt 7 ps 0.9" + lc;
+  }
+  return "with lines";
+}
+
+bool in_memory(const Curve &c) { return c.file.empty(); }
+
+bool plottable(const Figure &f)
+{
+  for (const Curve &c : f.curves)
+    if (!in_memory(c) || !c.x.empty())
+      return true;
+  return false;
+}
+
+/// The last non-empty line of gnuplot's messages, as the reason it failed.
+std::string last_line(const std::string &text)
+{
+  std::istringstream in(text);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r^") != std::string::npos)
+      last = line;
+  return last;
+}
+
+/// Runs `gnuplot NAME.gp` inside `dir`; the empty string on success, else why not.
+std::string run_gnuplot(const std::string &dir, const std::string &name)
+{
+  const std::string svg = dir + "/" + name + ".svg", log = dir + "/" + name + ".log";
+  const std::string script = name + ".gp", log_name = name + ".log";
+  std::remove(svg.c_str());
+  // Only async-signal-safe calls between fork and exec: the strings are made before.
+  const pid_t pid = fork();
+  if (pid < 0)
+    return std::string("cannot start gnuplot: ") + std::strerror(errno);
+  if (pid == 0)
+  {
+    if (chdir(dir.c_str()) != 0)
+      _exit(126);
+    const int in = open("/dev/null", O_RDONLY);
+    const int out = open(log_name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (in < 0 || out < 0)
+      _exit(126);
+    dup2(in, 0);
+    dup2(out, 1);
+    dup2(out, 2);
+    execlp("gnuplot", "gnuplot", script.c_str(), static_cast<char *>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    ;
+  struct stat st{};
+  const std::string messages = stat(log.c_str(), &st) == 0 ? read_file(log) : std::string();
+  const bool written = stat(svg.c_str(), &st) == 0 && st.st_size > 0;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && written)
+  {
+    std::remove(log.c_str());
+    return {};
+  }
+  std::remove(svg.c_str());
+  const std::string why = last_line(messages);
+  return "gnuplot could not draw it" + (why.empty() ? std::string() : ": " + why) + " (messages in " + log + ")";
+}
+} // namespace
+
+std::string gnuplot_script(const Figure &f)
+{
+  std::ostringstream o;
+  o << "# demvv figure '" << f.name << "': " << f.title << "\n"
+    << "# Redraw with `gnuplot " << f.name << ".gp` in this folder (writes " << f.name << ".svg).\n"
+    << "reset\n"
+    << "set terminal svg size 760,460 noenhanced font 'Sans,12' background rgb 'white'\n"
+    << "set encoding utf8\n"
+    << "set output " << quoted(f.name + ".svg") << "\n"
+    << "set datafile separator ','\n"
+    << "set title " << quoted(f.title) << "\n"
+    << "set xlabel " << quoted(f.x_label) << "\n"
+    << "set ylabel " << quoted(f.y_label) << "\n"
+    << "set grid\n"
+    << "set key " << f.key << (f.key == "off" ? "" : " box opaque") << "\n";
+  bool right = false;
+  for (const Curve &c : f.curves)
+    right = right || c.right_axis;
+  if (right)
+    o << "set y2label " << quoted(f.y2_label) << "\nset y2tics\nset ytics nomirror\n";
+  if (f.log_x)
+    o << "set logscale x\n";
+  if (f.log_y)
+    o << "set logscale y\n";
+  if (f.log_x || f.log_y)
+    o << "set format " << (f.log_x ? "x" : "") << (f.log_y ? "y" : "") << " '%g'\n";
+  if (std::isfinite(f.y_top_at_least))
+    o << "set yrange [*:" << number(f.y_top_at_least) << "<*]\n";
+  o << "plot ";
+  int block = 0, colour = 0;
+  bool first = true;
+  for (const Curve &c : f.curves)
+  {
+    ++colour;
+    if (in_memory(c) && c.x.empty())
+      continue;
+    o << (first ? "" : ", \\\n     ");
+    first = false;
+    if (in_memory(c))
+      o << quoted(f.name + ".csv") << " index " << block++ << " using " << using_item("1", c.x_scale) << ":"
+        << using_item("2", c.y_scale);
+    else
+      o << quoted(c.file) << " using " << using_item(c.x_column, c.x_scale) << ":" << using_item(c.y_column, c.y_scale);
+    o << (c.right_axis ? " axes x1y2 " : " ") << style_clause(c.style, c.colour ? c.colour : colour) << " title " << quoted(c.title);
+  }
+  o << "\n";
+  return o.str();
+}
+
+void write_figure_files(const Figure &f, const std::string &dir)
+{
+  std::ostringstream data;
+  bool any = false;
+  for (const Curve &c : f.curves)
+  {
+    if (!in_memory(c) || c.x.empty())
+      continue;
+    data << (any ? "\n\n" : "") << "# " << c.title << "\n";
+    any = true;
+    for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k)
+      data << number(c.x[k]) << "," << number(c.y[k]) << "\n";
+  }
+  if (any)
+    write_atomically(dir + "/" + f.name + ".csv", data.str());
+  write_atomically(dir + "/" + f.name + ".gp", gnuplot_script(f));
+}
+
+bool gnuplot_available()
+{
+  const char *path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "/usr/bin:/bin");
+  std::string d;
+  while (std::getline(dirs, d, ':'))
+    if (!d.empty() && access((d + "/gnuplot").c_str(), X_OK) == 0)
+      return true;
+  return false;
+}
+
+std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const std::string &dir)
+{
+  make_directories(dir);
+  const bool have_gnuplot = gnuplot_available();
+  std::vector<DrawnFigure> out;
+  for (const Figure &f : figures)
+  {
+    write_figure_files(f, dir);
+    DrawnFigure d;
+    d.name = f.name;
+    if (!plottable(f))
+      d.problem = "no data to draw";
+    else if (!have_gnuplot)
+      d.problem = "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the script " + f.name +
+                  ".gp is written";
+    else
+      d.problem = run_gnuplot(dir, f.name);
+    if (d.drawn())
+      d.svg = dir + "/" + f.name + ".svg";
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+} // namespace verify

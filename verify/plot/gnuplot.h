@@ -1,0 +1,34 @@
+// Figures drawn by gnuplot (Debian gnuplot-nox), as SVG.
+//
+// Every figure becomes a script NAME.gp in its folder (and NAME.csv with
+// the points of in-memory curves); gnuplot run in that folder writes
+// NAME.svg.  The script and its data stay, so a user can restyle a figure
+// and redraw it with `gnuplot NAME.gp` without demvv.  A figure gnuplot
+// could not draw (gnuplot missing, no data) is reported, never fatal: the
+// numbers in the run directory are the result, the pictures a view of them.
+#pragma once
+
+#include "verify/plot/figure.h"
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+struct DrawnFigure
+{
+  std::string name;
+  std::string svg;     ///< path of NAME.svg (empty when not drawn)
+  std::string problem; ///< why it was not drawn
+  bool drawn() const { return problem.empty(); }
+};
+
+/// The gnuplot script of a figure (it writes NAME.svg in its own folder).
+std::string gnuplot_script(const Figure &figure);
+/// Writes NAME.gp and, when a curve holds points, NAME.csv into `dir`.
+void write_figure_files(const Figure &figure, const std::string &dir);
+/// Writes the files of each figure and runs gnuplot on them, one process a figure.
+std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const std::string &dir);
+/// True when the gnuplot executable is on the PATH.
+bool gnuplot_available();
+} // namespace verify

@@ -1,0 +1,40 @@
+// Figures of studies: convergence orders and grid convergence indices.
+//
+//  - add_order_study: the errors of a refinement study as markers joined by
+//    a line, and beside them the theoretical order as a dashed line of slope
+//    p through the finest level, e_ref(h) = e_finest (h / h_finest)^p: on
+//    log-log axes the observed slope can be read against it.
+//  - gci_figure: the three levels of a Roache GCI study (value against cell
+//    size), the Richardson curve through them, f(h) = f_ext + (f_1 - f_ext)
+//    (h / h_1)^p with the observed order p, the extrapolated value f_ext and
+//    the band f_1 (1 +- GCI_fine) in which the exact value lies with the
+//    GCI's factor of safety.
+#pragma once
+
+#include "verify/plot/figure.h"
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+/// Adds one study (levels in any order) to a log-log figure.
+void add_order_study(Figure &figure, const std::string &label, const std::vector<double> &h,
+                     const std::vector<double> &error, double expected_order);
+
+struct GciLevels
+{
+  std::vector<double> h;     ///< cell sizes, fine to coarse [m]
+  std::vector<double> value; ///< the quantity on each level, fine to coarse
+  double extrapolated = 0;
+  double observed_order = 0;
+  double gci_fine = 0;       ///< relative
+};
+
+/// The Richardson curve at cell size h: f_ext + (f_1 - f_ext) (h / h_1)^p.
+double richardson_value(const GciLevels &levels, double h);
+
+/// `h_scale`, `value_scale`: display units (e.g. 1e3 for mm, 1e-6 for MPa).
+Figure gci_figure(const std::string &name, const std::string &quantity, const GciLevels &levels, double h_scale,
+                  double value_scale, const std::string &h_label, const std::string &value_label);
+} // namespace verify

@@ -1,0 +1,276 @@
+#include "verify/report/report.h"
+
+#include "verify/checks/catalogue.h"
+#include "verify/io/output.h"
+#include "verify/plot/gnuplot.h"
+#include "verify/plot/studies.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace verify
+{
+namespace
+{
+std::string sci(double v)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+std::string escaped(std::string_view text)
+{
+  std::string out;
+  for (char c : text)
+    switch (c)
+    {
+    case '&': out += "&amp;"; break;
+    case '<': out += "&lt;"; break;
+    case '>': out += "&gt;"; break;
+    case '"': out += "&quot;"; break;
+    default: out += c;
+    }
+  return out;
+}
+
+std::string base64(const std::string &bytes)
+{
+  static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t k = 0;
+  for (; k + 2 < bytes.size(); k += 3)
+  {
+    const unsigned v = static_cast<unsigned char>(bytes[k]) << 16 | static_cast<unsigned char>(bytes[k + 1]) << 8 |
+                       static_cast<unsigned char>(bytes[k + 2]);
+    out += {digits[v >> 18], digits[v >> 12 & 63], digits[v >> 6 & 63], digits[v & 63]};
+  }
+  if (k + 1 == bytes.size())
+  {
+    const unsigned v = static_cast<unsigned char>(bytes[k]) << 16;
+    out += {digits[v >> 18], digits[v >> 12 & 63], '=', '='};
+  }
+  else if (k + 2 == bytes.size())
+  {
+    const unsigned v = static_cast<unsigned char>(bytes[k]) << 16 | static_cast<unsigned char>(bytes[k + 1]) << 8;
+    out += {digits[v >> 18], digits[v >> 12 & 63], digits[v >> 6 & 63], '='};
+  }
+  return out;
+}
+
+std::string lower(std::string_view s)
+{
+  std::string out(s);
+  for (char &c : out)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// How far inside its tolerance a metric is: value / tolerance (tolerance /
+/// value for a lower bound); below 1 passes.  Shown on a log axis, so an
+/// exact zero is drawn at 1e-16 and an unbounded ratio at 1e6.
+double margin(const Metric &m)
+{
+  const double v = std::abs(m.value), t = std::abs(m.tolerance);
+  double r = m.at_least ? t / v : v / t;
+  if (!std::isfinite(r))
+    r = std::isnan(m.value) ? 1e6 : (m.at_least ? 1e6 : 1e-16);
+  return std::clamp(r, 1e-16, 1e6);
+}
+
+const char *figure_check_script = R"(
+window.addEventListener('load', function () {
+  var figures = document.querySelectorAll('img.figure'), broken = 0;
+  figures.forEach(function (img) {
+    var box = img.getBoundingClientRect();
+    var ok = img.complete && img.naturalWidth > 0 && box.width > 0 && box.height > 0;
+    img.setAttribute('data-rendered', ok ? 'yes' : 'no');
+    if (!ok) {
+      broken++;
+      var note = document.createElement('p');
+      note.className = 'broken';
+      note.textContent = 'This figure did not render in this browser.';
+      img.parentNode.insertBefore(note, img.nextSibling);
+    }
+  });
+  document.body.setAttribute('data-figures', String(figures.length));
+  document.body.setAttribute('data-figures-broken', String(broken));
+});
+)";
+
+const char *style_sheet = R"(
+body { font-family: sans-serif; max-width: 1000px; margin: 2em auto; padding: 0 1em; color: #222; line-height: 1.4; }
+table { border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: left; vertical-align: top; }
+th { background: #f2f2f2; }
+.pass { color: #17663a; font-weight: bold; }
+.fail { color: #b00020; font-weight: bold; }
+figure { margin: 1em 0; }
+img.figure { max-width: 100%; height: auto; border: 1px solid #ddd; }
+figcaption, .missing, .broken { font-size: 0.9em; color: #555; }
+.missing, .broken { color: #b00020; }
+section.check { border-top: 2px solid #ddd; margin-top: 2em; }
+dl.facts dt { font-weight: bold; float: left; clear: left; width: 9em; }
+dl.facts dd { margin-left: 10em; }
+pre { background: #f7f7f7; padding: 0.5em; overflow-x: auto; font-size: 0.8em; }
+)";
+
+std::string verdict(bool pass) { return pass ? "<span class=\"pass\">PASS</span>" : "<span class=\"fail\">FAIL</span>"; }
+} // namespace
+
+std::vector<Figure> check_figures(const CheckRecord &r)
+{
+  const std::string id = lower(r.check->id);
+  std::vector<Figure> out;
+  for (std::size_t k = 0; k < r.outcome.tables.size(); ++k)
+  {
+    const ConvergenceTable &t = r.outcome.tables[k];
+    Figure f;
+    f.name = id + "_convergence_" + std::to_string(k + 1);
+    f.title = t.title;
+    f.x_label = t.h_name;
+    f.y_label = t.error_name;
+    std::vector<double> h, e;
+    for (const ConvergenceRow &row : t.rows)
+    {
+      h.push_back(row.h);
+      e.push_back(row.error);
+    }
+    add_order_study(f, "observed (last order " + sci(t.last_order()) + ")", h, e, t.expected_order);
+    f.caption = "Errors of the study on log-log axes; the dashed line has the theoretical slope " +
+                sci(t.expected_order) + " through the finest level.";
+    out.push_back(std::move(f));
+  }
+  for (Figure f : r.outcome.figures)
+  {
+    f.name = id + "_" + f.name;
+    out.push_back(std::move(f));
+  }
+  if (!r.outcome.metrics.empty())
+  {
+    Figure f;
+    f.name = id + "_margins";
+    f.title = std::string(r.check->id) + ": each metric against its tolerance";
+    f.x_label = "metric (numbered as in the table)";
+    f.y_label = "value / tolerance (tolerance / value for a lower bound)";
+    f.log_y = true;
+    f.y_top_at_least = 10;
+    f.key = "top right";
+    std::vector<double> n, ratio;
+    for (std::size_t k = 0; k < r.outcome.metrics.size(); ++k)
+    {
+      n.push_back(static_cast<double>(k + 1));
+      ratio.push_back(margin(r.outcome.metrics[k]));
+    }
+    const double right = static_cast<double>(n.size()) + 0.5;
+    f.curves.push_back(curve("metric", n, ratio, CurveStyle::points));
+    f.curves.push_back(curve("tolerance (pass below)", {0.5, right}, {1.0, 1.0}, CurveStyle::dashed));
+    f.caption = "How far inside its tolerance each metric lies: a point below the dashed line passes. An exact "
+                "zero is drawn at 1e-16.";
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+std::string report_html(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
+                        const std::map<std::string, DrawnFigure> &drawn)
+{
+  std::size_t failed = 0, missing = 0;
+  for (const CheckRecord &r : records)
+    failed += r.pass() ? 0 : 1;
+  std::ostringstream body;
+  for (const CheckRecord &r : records)
+  {
+    const Check &c = *r.check;
+    body << "<section class=\"check\" id=\"" << escaped(c.id) << "\">\n<h3>" << escaped(c.id) << ": "
+         << escaped(c.title) << " — " << verdict(r.pass()) << "</h3>\n<dl class=\"facts\">\n"
+         << "<dt>Requirement</dt><dd>" << escaped(c.requirement) << "</dd>\n"
+         << "<dt>Reference</dt><dd>" << escaped(c.reference) << "</dd>\n"
+         << "<dt>Category</dt><dd>" << escaped(category_name(c.category)) << "</dd>\n"
+         << "<dt>Tolerance classes</dt><dd>" << escaped(tolerance_class_list(c.tolerance_classes)) << "</dd>\n"
+         << "<dt>Run time</dt><dd>" << sci(r.seconds) << " s</dd>\n</dl>\n";
+    if (!r.error.empty())
+      body << "<p class=\"fail\">The check stopped: " << escaped(r.error) << "</p>\n";
+    for (const Figure &f : check_figures(r))
+    {
+      const auto it = drawn.find(f.name);
+      body << "<figure>\n";
+      if (it != drawn.end() && it->second.drawn())
+        body << "<img class=\"figure\" alt=\"" << escaped(f.title) << "\" src=\"data:image/svg+xml;base64,"
+             << base64(read_file(it->second.svg)) << "\">\n";
+      else
+      {
+        ++missing;
+        body << "<p class=\"missing\">Figure '" << escaped(f.name) << "' was not drawn"
+             << (it == drawn.end() ? std::string() : ": " + escaped(it->second.problem)) << ".</p>\n";
+      }
+      body << "<figcaption>" << escaped(f.title) << (f.caption.empty() ? "" : ". ") << escaped(f.caption)
+           << "</figcaption>\n</figure>\n";
+    }
+    body << "<table>\n<tr><th>#</th><th>metric</th><th>class</th><th>value</th><th>tolerance</th><th>verdict</th>"
+            "<th>why this tolerance</th></tr>\n";
+    for (std::size_t k = 0; k < r.outcome.metrics.size(); ++k)
+    {
+      const Metric &m = r.outcome.metrics[k];
+      body << "<tr><td>" << k + 1 << "</td><td>" << escaped(m.name) << "</td><td>"
+           << tolerance_class_letter(m.tolerance_class) << "</td><td>" << sci(m.value) << "</td><td>"
+           << (m.at_least ? "&ge; " : "&le; ") << sci(m.tolerance) << "</td><td>" << verdict(m.pass) << "</td><td>"
+           << escaped(m.reason) << "</td></tr>\n";
+    }
+    body << "</table>\n";
+    if (!r.outcome.notes.empty())
+    {
+      body << "<ul>\n";
+      for (const std::string &n : r.outcome.notes)
+        body << "<li>" << escaped(n) << "</li>\n";
+      body << "</ul>\n";
+    }
+    body << "</section>\n";
+  }
+
+  std::ostringstream o;
+  o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+    << "<title>demvv verification report</title>\n<style>" << style_sheet << "</style>\n</head>\n"
+    << "<body data-figures-missing=\"" << missing << "\">\n<h1>demvv verification report</h1>\n<p>"
+    << records.size() - failed << " of " << records.size() << " checks pass"
+    << (failed ? " — <span class=\"fail\">" + std::to_string(failed) + " FAIL</span>" : std::string()) << ".</p>\n"
+    << "<h2>Verdicts</h2>\n<table>\n<tr><th>id</th><th>check</th><th>category</th><th>classes</th><th>verdict</th>"
+       "<th>run time [s]</th></tr>\n";
+  for (const CheckRecord &r : records)
+    o << "<tr><td><a href=\"#" << escaped(r.check->id) << "\">" << escaped(r.check->id) << "</a></td><td>"
+      << escaped(r.check->title) << "</td><td>" << escaped(category_name(r.check->category)) << "</td><td>"
+      << escaped(tolerance_class_list(r.check->tolerance_classes)) << "</td><td>" << verdict(r.pass())
+      << "</td><td>" << sci(r.seconds) << "</td></tr>\n";
+  o << "</table>\n<h2>Categories and tolerance classes</h2>\n<dl>\n";
+  for (Category c : {Category::code_verification, Category::solution_verification, Category::calibration,
+                     Category::validation})
+    o << "<dt><b>" << escaped(category_name(c)) << "</b></dt><dd>" << escaped(category_definition(c)) << "</dd>\n";
+  for (ToleranceClass t : {ToleranceClass::A, ToleranceClass::B, ToleranceClass::C, ToleranceClass::D})
+    o << "<dt><b>class " << tolerance_class_letter(t) << " (" << escaped(tolerance_class_name(t)) << ")</b></dt><dd>"
+      << escaped(tolerance_class_limit(t)) << " " << escaped(tolerance_class_rule(t)) << " "
+      << escaped(tolerance_class_reasoning(t)) << "</dd>\n";
+  o << "</dl>\n<h2>Checks</h2>\n"
+    << body.str() << "<h2>Provenance</h2>\n<pre>" << escaped(provenance.dump(2)) << "</pre>\n<script>"
+    << figure_check_script << "</script>\n</body>\n</html>\n";
+  return o.str();
+}
+
+void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
+                   const std::string &out_dir)
+{
+  make_directories(out_dir);
+  write_atomically(out_dir + "/report.json", report_json(records, provenance).dump(2) + "\n");
+  write_atomically(out_dir + "/report.md", report_markdown(records, provenance));
+  std::vector<Figure> figures;
+  for (const CheckRecord &r : records)
+    for (Figure &f : check_figures(r))
+      figures.push_back(std::move(f));
+  std::map<std::string, DrawnFigure> drawn;
+  for (DrawnFigure &d : draw_figures(figures, out_dir + "/figures"))
+    drawn[d.name] = std::move(d);
+  write_atomically(out_dir + "/report.html", report_html(records, provenance, drawn));
+}
+} // namespace verify
