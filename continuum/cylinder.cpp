@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -105,6 +106,7 @@ class CompressionTest::Impl
 public:
   virtual ~Impl() = default;
   virtual void run(const std::function<void(const CylinderStep &)> &on_step) = 0;
+  virtual std::string mesh_edges_csv() const = 0;
   CylinderMesh mesh;
 };
 
@@ -144,6 +146,23 @@ public:
       if (paraview && (n == spec_.time_steps || (spec_.paraview_every > 0 && n % spec_.paraview_every == 0)))
         write_frame(n);
     });
+  }
+
+  std::string mesh_edges_csv() const override
+  {
+    std::ostringstream o;
+    o.precision(17);
+    o << "# cell edges: " << (dim == 2 ? "r" : "x") << " [m], z [m]; one edge per block\n";
+    for (const auto &cell : cylinder_.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
+        {
+          const auto line = cell->line(l);
+          for (unsigned int v = 0; v < 2; ++v)
+            o << line->vertex(v)[0] << "," << line->vertex(v)[dim - 1] << "\n";
+          o << "\n";
+        }
+    return o.str();
   }
 
 private:
@@ -192,4 +211,5 @@ CompressionTest::CompressionTest(const CylinderSpec &spec) : impl_(make_test(spe
 CompressionTest::~CompressionTest() = default;
 const CylinderMesh &CompressionTest::mesh() const { return impl_->mesh; }
 void CompressionTest::run(const std::function<void(const CylinderStep &)> &on_step) { impl_->run(on_step); }
+std::string CompressionTest::mesh_edges_csv() const { return impl_->mesh_edges_csv(); }
 } // namespace continuum

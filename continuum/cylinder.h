@@ -97,6 +97,11 @@ public:
   /// Runs every step; calls on_step at t = 0 and after each step.  Throws
   /// NumericalFailure (outputs of earlier steps stay valid).
   void run(const std::function<void(const CylinderStep &)> &on_step);
+  /// The edges of this rank's cells as CSV: a comment line, then one edge
+  /// per block of two rows "radial or x [m],axial z [m]" and a blank line
+  /// (gnuplot draws each block as one segment).  In 3-D the edges are
+  /// projected on the x-z plane.
+  std::string mesh_edges_csv() const;
 
   class Impl;
 

@@ -183,6 +183,16 @@ CheckOutcome check_burgers_pull(const CheckContext &ctx)
   out.metrics.push_back(relative_error("force at the end vs eq. 7.18", p.tension.back(),
                                        p.law.constant_velocity_force(p.time.back(), p.speed), 1e-6, ToleranceClass::B,
                                        "as above, at one time"));
+  std::vector<double> closed;
+  for (double u : p.extension)
+    closed.push_back(p.law.constant_velocity_force(u / p.speed, p.speed));
+  out.figures.push_back(make_figure("pull", "Burger's contact pulled at constant speed", "extension [mm]",
+                                    "tensile force [N]",
+                                    {curve("demvv", p.extension, p.tension),
+                                     curve("eq. 7.18", p.extension, closed, CurveStyle::dashed)},
+                                    "The contact force at every step beside the closed form at the same extension."));
+  for (Curve &c : out.figures.back().curves)
+    c.x_scale = 1e3;
   out.notes.push_back("Pulled at " + num(p.speed) + " m/s for " + num(p.time.back()) + " s in " +
                       std::to_string(p.steps) + " steps; f(end) = " + num(p.tension.back()) + " N, C_inf v = " +
                       num(p.law.maxwell_viscosity * p.speed) + " N.");

@@ -17,6 +17,33 @@ namespace
 {
 double first_row_value(const Series &s, const std::string &column) { return s.column(column).front(); }
 
+/// The measured force of an impact beside the closed-form half sine
+/// F_max sin(omega (t - t_0)), t_0 putting its centre on the measured pulse's.
+Figure impact_figure(const std::string &label, const std::vector<double> &t, const std::vector<double> &force,
+                     double dt, double kn, double reduced_mass, double v_in)
+{
+  double first = std::nan(""), last = std::nan("");
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (force[k] > 0)
+    {
+      first = std::isnan(first) ? t[k] : first;
+      last = t[k];
+    }
+  const double tc = dem::LinearLaw::collision_time(kn, reduced_mass);
+  const double omega = dem::LinearLaw::natural_frequency(kn, reduced_mass);
+  const double f_max = dem::LinearLaw::peak_force(kn, reduced_mass, v_in);
+  const double t0 = 0.5 * (first + last + dt) - 0.5 * tc;
+  std::vector<double> closed;
+  for (double time : t)
+    closed.push_back(time > t0 && time < t0 + tc ? f_max * std::sin(omega * (time - t0)) : 0.0);
+  std::string name = label;
+  for (char &c : name)
+    c = c == '-' ? '_' : c;
+  return make_figure(name, label + " impact: normal force", "time [s]", "normal force [N]",
+                     {curve("demvv", t, force), curve("closed form (half sine)", t, closed, CurveStyle::dashed)},
+                     "The closed form is placed with its centre on the measured pulse's centre.");
+}
+
 /// Duration, peak force and restitution of one impact (item 1).
 void impact_metrics(CheckOutcome &out, const std::string &label, const std::vector<double> &t,
                     const std::vector<double> &force, double dt, double kn, double reduced_mass, double v_in,
@@ -48,6 +75,7 @@ void impact_metrics(CheckOutcome &out, const std::string &label, const std::vect
   out.metrics.push_back(relative_error(label + ": coefficient of restitution, relative error", v_out / v_in,
                                        dem::LinearLaw::restitution(), omega_dt * omega_dt, ToleranceClass::B,
                                        "spring energy at the switch-off step, (omega dt)^2"));
+  out.figures.push_back(impact_figure(label, t, force, dt, kn, reduced_mass, v_in));
 }
 } // namespace
 

@@ -480,6 +480,15 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
                                                    run.series.column("axial_stress_closed_form_pa")));
       if (n == spec.time_steps)
       {
+        const std::string tag = std::string(model) == "same shape" ? "same_shape" : "deviatoric";
+        out.figures.push_back(make_figure(
+          "stress_" + tag, std::string("Frictionless cylinder, ") + model + " bulk, at the deck's step", "time [s]",
+          "axial stress [MPa]",
+          {curve("finite elements", run.series.column("time_s"), run.series.column("axial_stress_pa")),
+           curve("eq. 7.18 (uniaxial chain)", run.series.column("time_s"),
+                 run.series.column("axial_stress_closed_form_pa"), CurveStyle::dashed)}));
+        for (Curve &c : out.figures.back().curves)
+          c.y_scale = 1e-6;
         production = t.rows.back().error;
         radial = relative_deviation(run.series.column("radial_strain"), run.series.column("radial_strain_closed_form"));
       }

@@ -106,7 +106,8 @@ const char *platens_keyword(continuum::Platens platens)
 }
 
 /// One compression test of a deck (`test` is its test at one level); the
-/// series streams to series_path when it is not empty.
+/// series streams to series_path when it is not empty, and the mesh's edges
+/// go beside it (mesh.csv) when one rank holds the whole mesh.
 CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderSpec &test,
                         const std::string &series_path)
 {
@@ -126,6 +127,8 @@ CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderS
   {
     continuum::CompressionTest compression(test);
     run.mesh = compression.mesh();
+    if (!series_path.empty() && mpi.ranks == 1)
+      write_atomically(series_path.substr(0, series_path.rfind('/') + 1) + "mesh.csv", compression.mesh_edges_csv());
     compression.run([&](const continuum::CylinderStep &s) {
       const double closed = uniaxial.constant_velocity_force(s.time, test.strain_rate);
       run.series.add({s.time, s.axial_strain, s.axial_stress, s.radial_strain, closed,

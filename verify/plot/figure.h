@@ -52,10 +52,15 @@ struct Figure
   std::string title;
   std::string x_label, y_label, y2_label; ///< with units
   bool log_x = false, log_y = false;
+  bool equal_axes = false; ///< one unit as long on both axes (a mesh, a sample)
   /// The y axis reaches at least this high (NaN: gnuplot's autoscale alone).
   double y_top_at_least = std::numeric_limits<double>::quiet_NaN();
   std::string key = "top left"; ///< gnuplot's key placement
   std::vector<Curve> curves;
   std::string caption; ///< one or two sentences under the picture in a report
 };
+
+/// A figure of curves on linear axes.
+Figure make_figure(std::string name, std::string title, std::string x_label, std::string y_label,
+                   std::vector<Curve> curves, std::string caption = "");
 } // namespace verify

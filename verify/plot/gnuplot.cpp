@@ -40,6 +40,19 @@ Curve column_curve(std::string title, std::string file, std::string x_column, st
   return c;
 }
 
+Figure make_figure(std::string name, std::string title, std::string x_label, std::string y_label,
+                   std::vector<Curve> curves, std::string caption)
+{
+  Figure f;
+  f.name = std::move(name);
+  f.title = std::move(title);
+  f.x_label = std::move(x_label);
+  f.y_label = std::move(y_label);
+  f.curves = std::move(curves);
+  f.caption = std::move(caption);
+  return f;
+}
+
 namespace
 {
 /// A gnuplot single-quoted string ('' stands for one quote inside).
@@ -173,6 +186,8 @@ std::string gnuplot_script(const Figure &f)
     o << "set logscale y\n";
   if (f.log_x || f.log_y)
     o << "set format " << (f.log_x ? "x" : "") << (f.log_y ? "y" : "") << " '%g'\n";
+  if (f.equal_axes)
+    o << "set size ratio -1\n";
   if (std::isfinite(f.y_top_at_least))
     o << "set yrange [*:" << number(f.y_top_at_least) << "<*]\n";
   o << "plot ";

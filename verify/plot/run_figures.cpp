@@ -151,6 +151,16 @@ void scene_figures(const std::string &dir, std::vector<Figure> &out)
         forces.push_back({c.substr(0, c.size() - 2), c});
   add_figure(out, s, {"wall_forces", "Forces on the walls (force on the wall)", "time [s]", "force [N]"}, "time_s", 1,
              forces);
+  // One tracked pair: its forces (several pairs share the file, row by row,
+  // and are left to the user's own filter).
+  const RunTable c(dir, "contacts.csv");
+  bool one_pair = c.has("first") && c.has("second");
+  for (std::size_t r = 1; one_pair && r < c.table->rows(); ++r)
+    one_pair = c.table->get(r, "first") == c.table->get(0, "first") && c.table->get(r, "second") == c.table->get(0, "second");
+  if (one_pair)
+    add_figure(out, c, {"contact_forces", "Forces of the tracked contact (normal > 0 in compression)", "time [s]",
+                        "force [N]"},
+               "time_s", 1, {{"normal", "normal_force_n"}, {"shear (magnitude)", "shear_force_n", 1, CurveStyle::dashed}});
 }
 
 void burgers_ode_figures(const std::string &dir, std::vector<Figure> &out)
@@ -191,6 +201,7 @@ void mesh_figure(const std::string &dir, std::vector<Figure> &out)
   f.x_label = "r or x [mm]";
   f.y_label = "z [mm]";
   f.key = "off";
+  f.equal_axes = true;
   f.curves.push_back(column_curve("mesh", "../mesh.csv", "1", "2", 1e3, 1e3));
   out.push_back(std::move(f));
 }
