@@ -191,8 +191,22 @@ CheckOutcome check_burgers_pull(const CheckContext &ctx)
                                     {curve("demvv", p.extension, p.tension),
                                      curve("eq. 7.18", p.extension, closed, CurveStyle::dashed)},
                                     "The contact force at every step beside the closed form at the same extension."));
-  for (Curve &c : out.figures.back().curves)
-    c.x_scale = 1e3;
+  std::vector<double> residual;
+  const double scale = p.law.maxwell_viscosity * p.speed, tolerance = trapezoid_tolerance(p.law, p.dt);
+  for (std::size_t k = 0; k < closed.size(); ++k)
+    residual.push_back((p.tension[k] - closed[k]) / scale);
+  out.figures.push_back(make_figure("pull_residual", "Residual of the pull against eq. 7.18", "extension [mm]",
+                                    "(F - F_7.18) / (C_inf v) [-]",
+                                    {curve("residual", p.extension, residual),
+                                     curve("tolerance", {p.extension.front(), p.extension.back()},
+                                           {tolerance, tolerance}, CurveStyle::dashed),
+                                     curve("", {p.extension.front(), p.extension.back()}, {-tolerance, -tolerance},
+                                           CurveStyle::dashed)},
+                                    "The metric is the largest |residual|; it passes inside the dashed band."));
+  out.figures.back().curves[2].colour = 2;
+  for (Figure &f : out.figures)
+    for (Curve &c : f.curves)
+      c.x_scale = 1e3;
   out.notes.push_back("Pulled at " + num(p.speed) + " m/s for " + num(p.time.back()) + " s in " +
                       std::to_string(p.steps) + " steps; f(end) = " + num(p.tension.back()) + " N, C_inf v = " +
                       num(p.law.maxwell_viscosity * p.speed) + " N.");

@@ -59,7 +59,8 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   if (o.resume)
     check_resumable(o.out_dir, deck);
   const RunStatus status = kind->run(deck, o);
-  draw_run_figures(o.out_dir, false);
+  if (status.writes_run_directory)
+    draw_run_figures(o.out_dir, false);
   tell(deck_path, o.out_dir, status);
   return status.exit_code();
 }

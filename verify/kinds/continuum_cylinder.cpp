@@ -146,6 +146,7 @@ CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderS
   }
   progress.finish();
   run.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.status.writes_run_directory = mpi.rank == 0;
 
   const auto eps = run.series.column("axial_strain");
   const auto sig = run.series.column("axial_stress_pa");
@@ -314,6 +315,7 @@ CylinderResult run_cylinder(const CylinderDeckSpec &spec, const RunOptions &opti
   std::vector<CylinderResult> runs;
   nlohmann::json level_summaries = nlohmann::json::array();
   RunStatus status;
+  status.writes_run_directory = mpi.rank == 0;
   for (const unsigned int level : levels)
   {
     test.refinements = level;

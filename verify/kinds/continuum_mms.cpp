@@ -123,6 +123,7 @@ MmsResult run_mms_deck(const MmsDeckSpec &spec, const RunOptions &options)
     record_failure(result.status, f);
   }
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.status.writes_run_directory = continuum::parallel_info().rank == 0;
 
   const bool space = study.variable == continuum::MmsVariable::space;
   const std::vector<ConvergenceTable> tables = mms_tables(result.levels, study);

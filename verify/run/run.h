@@ -40,6 +40,8 @@ struct RunStatus
   std::string message;
   double wall_seconds = 0;
   long steps = 0;
+  /// False on the MPI ranks that leave the run directory to rank 0.
+  bool writes_run_directory = true;
 
   nlohmann::json to_json() const;
   /// One-line diagnostic for stderr.
