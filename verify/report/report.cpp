@@ -7,15 +7,12 @@
 
 namespace verify
 {
-namespace
-{
-std::string sci(double v)
+std::string report_number(double v)
 {
   char b[32];
   std::snprintf(b, sizeof b, "%.3g", v);
   return b;
 }
-} // namespace
 
 std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose)
 {
@@ -38,7 +35,7 @@ std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (verbose)
-      std::cerr << (r.pass() ? "PASS " : "FAIL ") << c.id << "  " << c.title << "  (" << sci(r.seconds) << " s)"
+      std::cerr << (r.pass() ? "PASS " : "FAIL ") << c.id << "  " << c.title << "  (" << report_number(r.seconds) << " s)"
                 << (r.error.empty() ? "" : "  error: " + r.error) << "\n";
     out.push_back(std::move(r));
   }
@@ -111,7 +108,7 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
   for (const CheckRecord &r : records)
     o << "| " << r.check->id << " | " << r.check->requirement << " | "
       << tolerance_class_list(r.check->tolerance_classes) << " | " << category_name(r.check->category) << " | "
-      << r.check->reference << " | " << (r.pass() ? "PASS" : "**FAIL**") << " | " << sci(r.seconds) << " |\n";
+      << r.check->reference << " | " << (r.pass() ? "PASS" : "**FAIL**") << " | " << report_number(r.seconds) << " |\n";
   o << "\n## Metrics\n\n| id | metric | class | value | tolerance | verdict | why this tolerance |\n"
     << "|---|---|---|---|---|---|---|\n";
   for (const CheckRecord &r : records)
@@ -120,7 +117,7 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
       o << "| " << r.check->id << " | (the check stopped: " << r.error << ") | | | | **FAIL** | |\n";
     for (const Metric &m : r.outcome.metrics)
       o << "| " << r.check->id << " | " << m.name << " | " << tolerance_class_letter(m.tolerance_class) << " | "
-        << sci(m.value) << " | " << (m.at_least ? ">= " : "<= ") << sci(m.tolerance) << " | "
+        << report_number(m.value) << " | " << (m.at_least ? ">= " : "<= ") << report_number(m.tolerance) << " | "
         << (m.pass ? "PASS" : "**FAIL**") << " | " << m.reason << " |\n";
   }
   bool any_table = false;
@@ -133,8 +130,8 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
       o << "\n### " << r.check->id << ": " << t.title << " (expected order " << t.expected_order << ")\n\n"
         << "| level | " << t.h_name << " | " << t.error_name << " | observed order |\n|---|---|---|---|\n";
       for (std::size_t k = 0; k < t.rows.size(); ++k)
-        o << "| " << k << " | " << sci(t.rows[k].h) << " | " << sci(t.rows[k].error) << " | "
-          << (k ? sci(t.rows[k].order) : "-") << " |\n";
+        o << "| " << k << " | " << report_number(t.rows[k].h) << " | " << report_number(t.rows[k].error) << " | "
+          << (k ? report_number(t.rows[k].order) : "-") << " |\n";
     }
   bool any_note = false;
   for (const CheckRecord &r : records)

@@ -40,6 +40,9 @@ struct CheckRecord
 nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
 std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
 
+/// A number as every report prints it: three significant digits (%.3g).
+std::string report_number(double v);
+
 /// The figures of one check in report.html (names start with the check's id).
 std::vector<Figure> check_figures(const CheckRecord &record);
 /// report.html, given each figure drawn (by name).

@@ -15,13 +15,6 @@ namespace verify
 {
 namespace
 {
-std::string sci(double v)
-{
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
-
 std::string escaped(std::string_view text)
 {
   std::string out;
@@ -139,9 +132,9 @@ std::vector<Figure> check_figures(const CheckRecord &r)
       h.push_back(row.h);
       e.push_back(row.error);
     }
-    add_order_study(f, "observed (last order " + sci(t.last_order()) + ")", h, e, t.expected_order);
+    add_order_study(f, "observed (last order " + report_number(t.last_order()) + ")", h, e, t.expected_order);
     f.caption = "Errors of the study on log-log axes; the dashed line has the theoretical slope " +
-                sci(t.expected_order) + " through the finest level.";
+                report_number(t.expected_order) + " through the finest level.";
     out.push_back(std::move(f));
   }
   for (Figure f : r.outcome.figures)
@@ -191,7 +184,7 @@ std::string report_html(const std::vector<CheckRecord> &records, const nlohmann:
          << "<dt>Reference</dt><dd>" << escaped(c.reference) << "</dd>\n"
          << "<dt>Category</dt><dd>" << escaped(category_name(c.category)) << "</dd>\n"
          << "<dt>Tolerance classes</dt><dd>" << escaped(tolerance_class_list(c.tolerance_classes)) << "</dd>\n"
-         << "<dt>Run time</dt><dd>" << sci(r.seconds) << " s</dd>\n</dl>\n";
+         << "<dt>Run time</dt><dd>" << report_number(r.seconds) << " s</dd>\n</dl>\n";
     if (!r.error.empty())
       body << "<p class=\"fail\">The check stopped: " << escaped(r.error) << "</p>\n";
     for (const Figure &f : check_figures(r))
@@ -216,8 +209,8 @@ std::string report_html(const std::vector<CheckRecord> &records, const nlohmann:
     {
       const Metric &m = r.outcome.metrics[k];
       body << "<tr><td>" << k + 1 << "</td><td>" << escaped(m.name) << "</td><td>"
-           << tolerance_class_letter(m.tolerance_class) << "</td><td>" << sci(m.value) << "</td><td>"
-           << (m.at_least ? "&ge; " : "&le; ") << sci(m.tolerance) << "</td><td>" << verdict(m.pass) << "</td><td>"
+           << tolerance_class_letter(m.tolerance_class) << "</td><td>" << report_number(m.value) << "</td><td>"
+           << (m.at_least ? "&ge; " : "&le; ") << report_number(m.tolerance) << "</td><td>" << verdict(m.pass) << "</td><td>"
            << escaped(m.reason) << "</td></tr>\n";
     }
     body << "</table>\n";
@@ -243,7 +236,7 @@ std::string report_html(const std::vector<CheckRecord> &records, const nlohmann:
     o << "<tr><td><a href=\"#" << escaped(r.check->id) << "\">" << escaped(r.check->id) << "</a></td><td>"
       << escaped(r.check->title) << "</td><td>" << escaped(category_name(r.check->category)) << "</td><td>"
       << escaped(tolerance_class_list(r.check->tolerance_classes)) << "</td><td>" << verdict(r.pass())
-      << "</td><td>" << sci(r.seconds) << "</td></tr>\n";
+      << "</td><td>" << report_number(r.seconds) << "</td></tr>\n";
   o << "</table>\n<h2>Categories and tolerance classes</h2>\n<dl>\n";
   for (Category c : {Category::code_verification, Category::solution_verification, Category::calibration,
                      Category::validation})
