@@ -63,7 +63,7 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
   prov["mode"] = full ? "full" : "quick";
   prov["cases_dir"] = ctx.cases_dir;
   make_directories(out_dir);
-  write_atomically(out_dir + "/report.json", report_json(records, prov).dump(2) + "\n");
+  write_atomically(out_dir + "/report.json", json_text(report_json(records, prov), 2) + "\n");
   write_atomically(out_dir + "/report.md", report_markdown(records, prov));
   std::size_t failed = 0;
   for (const CheckRecord &r : records)

@@ -138,9 +138,9 @@ dem::ParticleStore parse_particles(const Deck &deck)
       t.fail(r, "density_kgpm3", "expected a density > 0 kg/m^3");
     if (!(b.kn > 0))
       t.fail(r, "kn_npm", "expected a normal stiffness > 0 N/m");
-    if (b.ks < 0)
+    if (!(b.ks >= 0))
       t.fail(r, "ks_npm", "expected a shear stiffness >= 0 N/m");
-    if (b.friction < 0)
+    if (!(b.friction >= 0))
       t.fail(r, "friction", "expected a friction coefficient >= 0");
     for (const char *flag : {"hold_velocity", "hold_spin"})
     {

@@ -1,5 +1,6 @@
 #include "verify/run/dem_driver.h"
 
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 #include "verify/io/paraview.h"
 #include "verify/io/sample_file.h"
@@ -173,7 +174,7 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
                               {"series", std::move(series)}};
   // The driver's state is written last: a checkpoint whose state file names
   // another step than its sample file is refused on resume.
-  write_atomically(checkpoint_state_file(dir), doc.dump() + "\n");
+  write_atomically(checkpoint_state_file(dir), json_text(doc) + "\n");
 }
 
 nlohmann::json read_checkpoint(const std::string &dir)
@@ -182,22 +183,16 @@ nlohmann::json read_checkpoint(const std::string &dir)
   if (!std::filesystem::exists(path))
     throw DeckError(dir + ": no checkpoint to resume from (expected " + path +
                     ", written when a run is interrupted or at its checkpoint interval)");
-  try
-  {
-    nlohmann::json doc = nlohmann::json::parse(read_file(path));
-    if (doc.value("format", "") != "demvv-checkpoint" || doc.value("format_version", 0) != 1)
-      throw DeckError(path + ": not a demvv checkpoint of format version 1");
-    return doc;
-  }
-  catch (const nlohmann::json::exception &e)
-  {
-    throw DeckError(path + ": unreadable checkpoint: " + e.what());
-  }
+  nlohmann::json doc = parse_json_input(read_input(path, "checkpoint", max_table_bytes), path, "demvv checkpoint");
+  if (!doc.is_object() || doc.value("format", nlohmann::json()) != "demvv-checkpoint" ||
+      doc.value("format_version", nlohmann::json()) != 1)
+    throw DeckError(path + ": not a demvv checkpoint of format version 1");
+  return doc;
 }
 
-/// Continues the simulation, the series and the files from the checkpoint.
-void resume_from_checkpoint(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, Cadence &cadence,
-                            const std::string &dir)
+/// The checkpoint's state into the simulation, the series and the files.
+void resume_from_checkpoint_state(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, Cadence &cadence,
+                                  const std::string &dir)
 {
   const nlohmann::json doc = read_checkpoint(dir);
   SampleFile state = read_sample(checkpoint_sample_file(dir));
@@ -225,6 +220,22 @@ void resume_from_checkpoint(dem::Simulation &sim, DemProtocol &protocol, RunFile
     }
     series[k].series->restore_rows(std::move(rows));
     series[k].series->resume_stream(dir + "/" + series[k].file, saved[k].at("bytes").get<std::uintmax_t>());
+  }
+}
+
+/// Continues the simulation, the series and the files from the checkpoint;
+/// a checkpoint edited or damaged beyond its format is the one-line error.
+void resume_from_checkpoint(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, Cadence &cadence,
+                            const std::string &dir)
+{
+  try
+  {
+    resume_from_checkpoint_state(sim, protocol, files, cadence, dir);
+  }
+  catch (const nlohmann::json::exception &e)
+  {
+    throw DeckError(checkpoint_state_file(dir) + ": a field is missing or of the wrong type (" + e.what() +
+                    "): expected a checkpoint written by demvv");
   }
 }
 } // namespace
