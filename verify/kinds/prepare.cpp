@@ -183,7 +183,11 @@ SampleFile load_or_prepare_sample(const std::string &path, const std::string &ca
 {
   const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
   if (!is_deck)
-    return read_sample(path);
+  {
+    SampleFile sample = read_sample(path);
+    check_test_cell(sample, path);
+    return sample;
+  }
   const Deck deck = Deck::from_file(path);
   if (deck.kind() != "prepare")
     throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
@@ -192,7 +196,11 @@ SampleFile load_or_prepare_sample(const std::string &path, const std::string &ca
   const std::string key = deck.resolved() + "\npreparation revision " + std::to_string(dem::preparation_revision);
   const std::string dir = cache_dir + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
   if (std::filesystem::exists(dir + "/sample.json"))
-    return read_sample(dir + "/sample.json");
+  {
+    SampleFile sample = read_sample(dir + "/sample.json");
+    check_test_cell(sample, dir + "/sample.json");
+    return sample;
+  }
   PrepareResult r = run_prepare(deck, {dir, 0, true});
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());

@@ -198,9 +198,10 @@ Setup sample_setup(const UniaxialSpec &spec)
   s.cell = std::move(sample.cell);
   std::ostringstream d;
   d << "prepared sample " << spec.sample_name << " of " << s.sim->particles().size() << " balls";
-  if (preparation.contains("solid_fraction_cell"))
-    d << " (cell solid fraction " << preparation["solid_fraction_cell"].get<double>() << ", coordination "
-      << preparation["coordination_number"].get<double>() << ")";
+  const nlohmann::json fraction = preparation.value("solid_fraction_cell", nlohmann::json());
+  const nlohmann::json coordination = preparation.value("coordination_number", nlohmann::json());
+  if (fraction.is_number() && coordination.is_number())
+    d << " (cell solid fraction " << fraction.get<double>() << ", coordination " << coordination.get<double>() << ")";
   s.cell.description = d.str();
   return s;
 }
@@ -426,9 +427,12 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
       deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
     spec.sample_file = deck.file("sample/file");
     spec.sample_name = deck.text("sample/file");
-    if (!std::filesystem::is_regular_file(spec.sample_file))
+    if (!std::filesystem::exists(spec.sample_file))
       deck.fail("sample/file", "no such file (" + spec.sample_file +
                                  "): expected a sample file (.json) or a prepare deck (.prm), relative to the deck");
+    if (!std::filesystem::is_regular_file(spec.sample_file))
+      deck.fail("sample/file", "not a regular file (a directory, device or pipe): expected a sample file (.json) "
+                               "or a prepare deck (.prm)");
   }
   dem::parse_lattice(deck.text("sample/lattice"), spec.lattice);
   spec.ball_radius = deck.real("sample/ball radius");
