@@ -111,6 +111,19 @@ bool Simulation::step(StepHooks &hooks)
   return true;
 }
 
+double estimated_memory_bytes(double particles, int walls)
+{
+  constexpr double pairs_per_ball = 8;
+  const double ball = 5 * sizeof(Vec3) + 12 * sizeof(double) + 1 // ParticleStore
+                      + 2 * sizeof(double) + sizeof(BallEnergy)   // step scratch, energy ledger
+                      + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
+                      + 2 * sizeof(std::size_t)                  // contact table adjacency
+                      + double(walls) * (sizeof(ContactState) + 1);
+  const double pair = sizeof(Pair) + 2 * sizeof(Contact) + 2 * sizeof(LawState) + sizeof(ContactLoad) +
+                      sizeof(BreakForces) + 2 * sizeof(std::size_t);
+  return 1.5 * particles * (ball + pairs_per_ball * pair);
+}
+
 void Simulation::refresh_contacts()
 {
   // A ball without contacts still gets the step of one contact with its own

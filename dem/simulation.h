@@ -102,6 +102,19 @@ struct Snapshot
 
 class Simulation;
 
+/// Memory a simulation of `particles` balls and `walls` walls needs [bytes],
+/// estimated from the engine's own arrays: the ball arrays and per-ball
+/// scratch, the wall history (one ContactState per wall and ball), the cell
+/// list, and for each neighbour pair its candidate, contact entry, law state,
+/// load and break forces (with the table's merge scratch).  A dense packing
+/// with the default skin has about 7 candidate pairs per ball; 8 are
+/// counted, and half again for vector growth and the heap, so the estimate
+/// errs high: 7.7 kB per ball with three walls, against 3.3 kB measured
+/// (peak resident memory, less the executable's own, of a 200000-ball fcc
+/// bench).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
+/// serves to refuse a run that cannot fit before allocating.
+double estimated_memory_bytes(double particles, int walls);
+
 /// What a protocol may do at a step's force time (see StepHooks).
 struct ForceTimeAction
 {

@@ -1,6 +1,7 @@
 #include "verify/kinds/prepare.h"
 
 #include "verify/decks/deck_sections.h"
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 #include "verify/io/paraview.h"
 
@@ -113,7 +114,12 @@ dem::PackingSettings parse_prepare(const Deck &deck)
   const dem::PackingSettings settings = read_settings(deck);
   try
   {
-    dem::cell_size(settings); // refuse an impossible packing before any file is written
+    // Refuse an impossible packing, or one that cannot fit in memory, before any file is written.
+    const dem::CellSize cell = dem::cell_size(settings);
+    const std::string key = key_of(settings.particles > 0 ? "particles" : "radius");
+    check_memory(dem::estimated_memory_bytes(double(cell.particles), 3),
+                 format_number(double(cell.particles)) + " balls", deck.path(), key, deck.text(key),
+                 "expected fewer balls (a larger ball radius or a smaller cell)");
   }
   catch (const dem::PackingError &e)
   {

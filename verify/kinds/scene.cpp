@@ -2,9 +2,12 @@
 
 #include "verify/decks/csv_input.h"
 #include "verify/decks/deck_sections.h"
+#include "verify/io/input.h"
 
 #include "dem/measure.h"
+#include "dem/neighbors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -118,9 +121,13 @@ dem::ParticleStore parse_particles(const Deck &deck)
     if (!t.has(c))
       throw DeckError(t.path() + ": column '" + std::string(c) +
                       "' is missing: expected a header with x_m,y_m,z_m,radius_m");
+  check_memory(dem::estimated_memory_bytes(double(t.rows()), int(deck.instances("walls", "plane").size() +
+                                                                  deck.instances("walls", "cylinder").size())),
+               std::to_string(t.rows()) + " balls", t.path(), "rows", std::to_string(t.rows()),
+               "expected fewer balls");
   const dem::BallSpec common = parse_ball_properties(deck);
   dem::ParticleStore p;
-  p.reserve(t.rows());
+  p.reserve(static_cast<dem::Index>(t.rows()));
   for (std::size_t r = 0; r < t.rows(); ++r)
   {
     dem::BallSpec b = common;

@@ -2,6 +2,7 @@
 
 #include "verify/run/analysis.h"
 #include "verify/decks/deck_sections.h"
+#include "verify/io/input.h"
 #include "verify/io/paraview.h"
 #include "verify/kinds/prepare.h"
 
@@ -438,6 +439,13 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
   spec.ball_radius = deck.real("sample/ball radius");
   spec.diameter = deck.real("sample/diameter");
   spec.height = deck.real("sample/height");
+  if (!spec.from_file)
+  {
+    const double sites = dem::lattice_cylinder_sites(spec.lattice, spec.ball_radius, spec.diameter, spec.height);
+    check_memory(sites * sizeof(dem::Vec3) + dem::estimated_memory_bytes(sites, 3),
+                 "a lattice of " + format_number(sites) + " sites", deck.path(), "sample/ball radius",
+                 deck.text("sample/ball radius"), "expected a larger ball radius or a smaller sample");
+  }
   spec.balls = parse_ball_properties(deck);
   spec.law = LawSpec::parse(deck);
   spec.bonds = BondSpec::parse(deck);
