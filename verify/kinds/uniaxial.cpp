@@ -261,6 +261,13 @@ public:
     return test_.axial_strain(sim) / spec_.final_strain;
   }
   bool finished(const dem::Simulation &sim) const override { return test_.finished(sim); }
+  double time_left(const dem::Simulation &sim) const override { return test_.time_left(sim); }
+  [[noreturn]] void refuse_duration(const std::string &expected) const override
+  {
+    if (spec_.by_platen_speed)
+      spec_.deck.fail("loading/platen speed", format_number(spec_.platen_speed), expected);
+    spec_.deck.fail("loading/strain rate", format_number(spec_.strain_rate), expected);
+  }
   std::string state_text(const dem::Simulation &sim) const override
   {
     char text[96];

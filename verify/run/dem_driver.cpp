@@ -109,8 +109,10 @@ public:
   void after_integration(dem::Simulation &sim) override
   {
     protocol_.after_integration(sim);
-    if (due_)
-      protocol_.record(sim);
+    if (!due_)
+      return;
+    protocol_.record(sim);
+    sim.check_energy_growth(runaway_energy_factor);
   }
 
   bool last() const { return last_; }
@@ -137,6 +139,22 @@ private:
 };
 
 std::string deck_hash(const Deck &deck) { return fnv1a_hex(deck.resolved()); }
+
+/// Refuses a run whose steps cannot be counted in a lifetime (see the header note).
+void check_reachable(const dem::Simulation &sim, const DemProtocol &protocol)
+{
+  const double steps = dem::least_steps(sim.particles(), sim.settings(), protocol.time_left(sim));
+  if (!(steps > max_run_steps))
+    return;
+  // A generous speed for the estimate: 1e7 particle-steps per second.
+  const double years = std::max(1.0, double(sim.particles().size())) * steps / 1e7 / 3.15576e7;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the run would need at least %.3g steps (about %.3g years at 1e7 particle-steps/s): expected a run "
+                "of at most %.0e steps",
+                steps, years, max_run_steps);
+  protocol.refuse_duration(text);
+}
 
 void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const RunFiles &files,
                       const Cadence &cadence, const std::string &dir, const std::string &hash)
@@ -325,6 +343,17 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   Cadence cadence(protocol, files, output);
   RunDirectory *dir = files.directory();
   const std::string hash = dir ? dir->deck_hash() : "";
+  if (!options.resume)
+    try
+    {
+      check_reachable(sim, protocol);
+    }
+    catch (const DeckError &e)
+    {
+      if (dir)
+        dir->write_summary({{"status", {{"state", "refused"}, {"message", e.what()}}}});
+      throw;
+    }
   if (dir && options.resume)
     resume_from_checkpoint(sim, protocol, files, cadence, options.out_dir);
   else if (dir)
@@ -370,9 +399,11 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
       if (progress.due())
       {
         const double rate = double(sim.particles().size()) * double(sim.steps() - steps_at_start) / progress.elapsed();
-        char speed[48];
-        std::snprintf(speed, sizeof speed, "  %.3g particle-steps/s", rate);
-        progress.update(std::clamp(protocol.fraction_done(sim), 0.0, 1.0), protocol.state_text(sim) + speed);
+        const double done = std::clamp(protocol.fraction_done(sim), 0.0, 1.0);
+        char speed[96];
+        std::snprintf(speed, sizeof speed, "  step %ld of ~%.3g  %.3g particle-steps/s", sim.steps(),
+                      done > 0 ? double(sim.steps()) / done : double(sim.steps()), rate);
+        progress.update(done, protocol.state_text(sim) + speed);
       }
     }
   }
