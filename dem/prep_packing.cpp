@@ -11,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
@@ -559,7 +560,13 @@ CellSize cell_size(const PackingSettings &s)
     c.diameter = s.diameter;
     c.height = s.height;
     const double volume = pi * 0.25 * s.diameter * s.diameter * s.height;
-    c.particles = std::lround(volume * s.target_solid_fraction / ball_volume(s.radius)); // eq. 5.1
+    const double count = volume * s.target_solid_fraction / ball_volume(s.radius); // eq. 5.1
+    if (!(count <= double(std::numeric_limits<Index>::max())))
+      throw PackingError("radius", "the cell (D = " + fmt(c.diameter) + " m, H = " + fmt(c.height) + " m) would hold " +
+                                     fmt(count) + " balls of radius " + fmt(s.radius) +
+                                     " m, more than a ball index counts (" +
+                                     std::to_string(std::numeric_limits<Index>::max()) + ")");
+    c.particles = std::lround(count);
   }
   if (!(c.diameter > 2 * s.radius && c.height > 2 * s.radius) || c.particles < 1)
     throw PackingError(s.particles > 0 ? "particles" : "diameter",

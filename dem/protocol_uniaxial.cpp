@@ -1,6 +1,7 @@
 #include "dem/protocol_uniaxial.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dem
 {
@@ -26,6 +27,16 @@ double UniaxialCompression::axial_strain(const Simulation &sim) const
 double UniaxialCompression::platen_stress(const Simulation &sim, WallIndex w) const
 {
   return -sim.wall_force(w).dot(sim.walls()[w].direction) / area_;
+}
+
+double UniaxialCompression::time_left(const Simulation &sim) const
+{
+  // The approach covers speed t^2 / (2 ramp) during the ramp and
+  // speed (t - ramp / 2) after it.
+  const double distance = settings_.final_strain * height0_, ramp = settings_.ramp_time;
+  const double total = distance / speed_ >= 0.5 * ramp ? distance / speed_ + 0.5 * ramp
+                                                        : std::sqrt(2 * ramp * distance / speed_);
+  return std::max(0.0, total - (sim.time() - start_time_));
 }
 
 void UniaxialCompression::drive(Simulation &sim) const

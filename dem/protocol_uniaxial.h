@@ -36,6 +36,9 @@ public:
   /// The step hook: platens are driven before the forces of every step.
   void before_forces(Simulation &sim) override { drive(sim); }
   bool finished(const Simulation &sim) const { return axial_strain(sim) >= settings_.final_strain; }
+  /// Simulated time until the platens have closed to the final strain on
+  /// their schedule (the ramp, then the full speed) [s].
+  double time_left(const Simulation &sim) const;
 
   double initial_height() const { return height0_; }
   double area() const { return area_; }

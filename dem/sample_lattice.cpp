@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace dem
 {
@@ -55,11 +58,31 @@ std::vector<Vec3> lattice_box(Lattice l, double r, int nx, int ny, int nz)
   return out;
 }
 
+namespace
+{
+/// Cube edge of the lattice of spheres of radius r.
+double cube_edge(Lattice l, double r) { return l == Lattice::simple_cubic ? 2 * r : 2 * std::sqrt(2.0) * r; }
+
+/// Cubes of edge a along a length, with one spare at each end.
+double cubes_along(double length, double a) { return std::ceil(length / a) + 2; }
+} // namespace
+
+double lattice_cylinder_sites(Lattice l, double r, double diameter, double height)
+{
+  const double a = cube_edge(l, r);
+  const double basis = l == Lattice::simple_cubic ? 1 : 4;
+  return basis * cubes_along(diameter, a) * cubes_along(diameter, a) * cubes_along(height, a);
+}
+
 LatticeCylinder lattice_cylinder(Lattice l, double r, double diameter, double height)
 {
-  const double a = l == Lattice::simple_cubic ? 2 * r : 2 * std::sqrt(2.0) * r;
-  const int n_xy = static_cast<int>(std::ceil(diameter / a)) + 2;
-  const int n_z = static_cast<int>(std::ceil(height / a)) + 2;
+  const double sites = lattice_cylinder_sites(l, r, diameter, height);
+  if (!(sites <= double(std::numeric_limits<Index>::max())))
+    throw std::length_error("a lattice cylinder of " + std::to_string(sites) + " sites (ball radius " +
+                            std::to_string(r) + " m): more than a ball index counts");
+  const double a = cube_edge(l, r);
+  const int n_xy = static_cast<int>(cubes_along(diameter, a));
+  const int n_z = static_cast<int>(cubes_along(height, a));
   const std::vector<Vec3> box = lattice_box(l, r, n_xy, n_xy, n_z);
   const Vec3 centre(0.5 * (n_xy - 1) * a, 0.5 * (n_xy - 1) * a, 0);
   const double tol = 1e-9 * r;

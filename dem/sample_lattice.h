@@ -41,6 +41,13 @@ struct LatticeCylinder
 };
 
 /// Balls of the lattice whose whole sphere fits in a cylinder of the given
-/// diameter and height.
+/// diameter and height.  std::length_error when its box has more sites than
+/// a ball index counts (lattice_cylinder_sites).
 LatticeCylinder lattice_cylinder(Lattice l, double ball_radius, double diameter, double height);
+
+/// Sites of the box lattice_cylinder() lays out and keeps the cylinder's
+/// balls from (about 4/pi times as many as it keeps, more for thin
+/// samples), as a double so that a tiny radius cannot overflow: callers
+/// check it against memory before building the cylinder.
+double lattice_cylinder_sites(Lattice l, double ball_radius, double diameter, double height);
 } // namespace dem

@@ -111,19 +111,50 @@ bool Simulation::step(StepHooks &hooks)
   return true;
 }
 
+namespace
+{
+/// The largest stability row bound of one contact with a ball's own
+/// stiffness [1/s^2] (real mass and inertia, so that held balls count too).
+double lone_contact_bound(const ParticleStore &P)
+{
+  double largest = 0;
+  for (Index p = 0; p < P.size(); ++p)
+  {
+    const double own = std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p]));
+    largest = std::max(largest, own / P.mass[p]);
+  }
+  return largest;
+}
+} // namespace
+
+double estimated_memory_bytes(double particles, int walls)
+{
+  constexpr double pairs_per_ball = 8;
+  const double ball = 5 * sizeof(Vec3) + 12 * sizeof(double) + 1 // ParticleStore
+                      + 2 * sizeof(double) + sizeof(BallEnergy)   // step scratch, energy ledger
+                      + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
+                      + 2 * sizeof(std::size_t)                  // contact table adjacency
+                      + double(walls) * (sizeof(ContactState) + 1);
+  const double pair = sizeof(Pair) + 2 * sizeof(Contact) + 2 * sizeof(LawState) + sizeof(ContactLoad) +
+                      sizeof(BreakForces) + 2 * sizeof(std::size_t);
+  return 1.5 * particles * (ball + pairs_per_ball * pair);
+}
+
+double least_steps(const ParticleStore &particles, const SimulationSettings &settings, double duration)
+{
+  const double largest_step = settings.fixed_time_step > 0
+                                ? settings.fixed_time_step
+                                : settings.time_step_safety * critical_step(lone_contact_bound(particles));
+  return largest_step > 0 ? duration / largest_step : infinity;
+}
+
 void Simulation::refresh_contacts()
 {
   // A ball without contacts still gets the step of one contact with its own
   // stiffness, so that a first impact is resolved; real mass and inertia are
   // used so that a scene of held balls still has a step.  Radii only change
   // before a refresh, so this is computed here, not every step.
-  lone_bound_max_ = 0;
-  for (Index p = 0; p < particles_.size(); ++p)
-  {
-    const ParticleStore &P = particles_;
-    const double own = std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p]));
-    lone_bound_max_ = std::max(lone_bound_max_, own / P.mass[p]);
-  }
+  lone_bound_max_ = lone_contact_bound(particles_);
   neighbors_.set_skin(settings_.skin_fraction * particles_.max_radius());
   neighbors_.rebuild(particles_);
   contacts_.rebuild(neighbors_.pairs(), particles_);
@@ -391,6 +422,27 @@ EnergyLedger Simulation::energy() const
   e.boundary_work -= removed_wall_strain_;
   e.initial = initial_energy_;
   return e;
+}
+
+void Simulation::check_energy_growth(double factor) const
+{
+  const EnergyLedger e = energy();
+  // The kinetic energy at the force time, 1/2 m v(t - dt/2).v(t + dt/2),
+  // turns negative when contacts oscillate faster than the step resolves:
+  // the scheme's invariant (kinetic + strain) then stays constant while the
+  // strain energy grows without bound, so a negative part cancels nothing.
+  const double held = std::max(0.0, e.kinetic) + e.strain;
+  const double supplied = e.initial + std::max(0.0, e.boundary_work) + std::max(0.0, e.body_work);
+  if (!(held > factor * supplied))
+    return;
+  const auto most = std::max_element(ball_energy_.begin(), ball_energy_.end(),
+                                     [](const BallEnergy &a, const BallEnergy &b) { return a.kinetic < b.kinetic; });
+  std::ostringstream msg;
+  msg << "runaway energy: kinetic + strain energy " << held << " J is more than " << factor
+      << " times the energy supplied (initial + boundary and gravity work) " << supplied
+      << " J: the time step does not resolve the contacts (it is above the stability limit, or within a few "
+         "percent of it)";
+  fail(most == ball_energy_.end() ? -1 : static_cast<Index>(most - ball_energy_.begin()), msg.str());
 }
 
 std::pair<double, double> Simulation::wall_energy(WallIndex w) const

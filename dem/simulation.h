@@ -102,6 +102,26 @@ struct Snapshot
 
 class Simulation;
 
+/// Memory a simulation of `particles` balls and `walls` walls needs [bytes],
+/// estimated from the engine's own arrays: the ball arrays and per-ball
+/// scratch, the wall history (one ContactState per wall and ball), the cell
+/// list, and for each neighbour pair its candidate, contact entry, law state,
+/// load and break forces (with the table's merge scratch).  A dense packing
+/// with the default skin has about 7 candidate pairs per ball; 8 are
+/// counted, and half again for vector growth and the heap, so the estimate
+/// errs high: 7.7 kB per ball with three walls, against 3.3 kB measured
+/// (peak resident memory, less the executable's own, of a 200000-ball fcc
+/// bench).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
+/// serves to refuse a run that cannot fit before allocating.
+double estimated_memory_bytes(double particles, int walls);
+
+/// Lower bound of the number of steps needed to simulate `duration` seconds
+/// of `particles`: the largest step the simulation could choose is the fixed
+/// step, or the safety fraction of the critical step of one contact with a
+/// ball's own stiffness (contacts only make it smaller).  Infinite when the
+/// step would be zero.
+double least_steps(const ParticleStore &particles, const SimulationSettings &settings, double duration);
+
 /// What a protocol may do at a step's force time (see StepHooks).
 struct ForceTimeAction
 {
@@ -182,6 +202,17 @@ public:
   /// Energy terms at the last force time.  Kinetic energy is current only
   /// after integrate(true).
   EnergyLedger energy() const;
+
+  /// Stops the run (NumericalFault naming the ball with the most kinetic
+  /// energy) when the kinetic (its positive part) plus strain energy exceeds
+  /// `factor` times the energy ever supplied: the initial energy plus the
+  /// positive parts of the boundary and gravity work.  Dissipation only
+  /// removes energy, and a stable step holds the strain energy of an
+  /// oscillating contact below E / (1 - (omega dt / 2)^2) for an invariant
+  /// E (under 3 E at the default step safety, where omega dt <= 1.6), so
+  /// only an unstable integration creates that much.  Call it after
+  /// integrate(true).
+  void check_energy_growth(double factor) const;
 
   /// Force exerted by the balls on wall w at the last force time [N].
   Vec3 wall_force(WallIndex w) const;

@@ -194,3 +194,61 @@ TEST_CASE("centred differences run a linear oscillator at (2/dt) asin(omega dt/2
     CHECK(std::abs(measured_error - theta * theta / 24) > 1e-3 * measured_error);
   }
 }
+
+TEST_CASE("the energy check stops a step the contacts cannot follow and passes one they can", "[dem][stability]")
+{
+  // Two bonded balls oscillate about touching with omega^2 = kn / m.  The
+  // scheme conserves its invariant E (kinetic at the force time + strain)
+  // at any step, but the strain part peaks at E / (1 - theta^2 / 4),
+  // theta = omega dt: 1.33 E at theta = 1, 2.3 E at 1.5, 20 E at 1.95
+  // (stable, 2.5 % under the limit theta = 2) and without bound above 2.
+  // The check (factor 10 on the energy supplied, here E) passes the first
+  // two and stops the others within a few periods.
+  for (const auto &[theta, stops] : {std::pair{1.0, false}, {1.5, false}, {1.95, true}, {2.1, true}})
+  {
+    CAPTURE(theta);
+    const double kn = 1e6, r = 1e-3, v = 1e-3;
+    auto sim = two_balls(r, 2 * r, kn);
+    sim.refresh_contacts();
+    dem::bond_pair(sim.contacts(), sim.particles(), 0, 1, 1e12, 1e12);
+    sim.settings().fixed_time_step = theta / std::sqrt(kn / sim.particles().mass[0]);
+    sim.settings().allow_unstable_step = true;
+    sim.particles().velocity[0] = Vec3(-v, 0, 0);
+    sim.particles().velocity[1] = Vec3(v, 0, 0);
+    bool stopped = false;
+    try
+    {
+      for (int k = 0; k < 500; ++k)
+      {
+        sim.compute_forces();
+        sim.integrate(true);
+        sim.check_energy_growth(10);
+      }
+    }
+    catch (const dem::NumericalFault &f)
+    {
+      stopped = true;
+      CHECK(std::string(f.what()).find("runaway energy") != std::string::npos);
+      CHECK(f.particle >= 0);
+    }
+    CHECK(stopped == stops);
+  }
+}
+
+TEST_CASE("least_steps bounds the steps of a run from below", "[dem][stability]")
+{
+  // Two balls meet and part: the automatic step shrinks while they touch,
+  // so the run takes more steps than the bound of one lone contact per ball.
+  auto sim = two_balls(1e-3, 2.1e-3, 1e6);
+  sim.particles().velocity[0] = Vec3(0.05, 0, 0);
+  const double duration = 5e-3;
+  const double least = dem::least_steps(sim.particles(), sim.settings(), duration);
+  while (sim.time() < duration)
+    sim.step();
+  CHECK(least > 100);
+  CHECK(double(sim.steps()) >= least);
+  CHECK(double(sim.steps()) < 2 * least);
+  // A fixed step gives the count exactly.
+  sim.settings().fixed_time_step = 1e-6;
+  CHECK_THAT(dem::least_steps(sim.particles(), sim.settings(), duration), WithinRel(5000.0, 1e-12));
+}

@@ -321,7 +321,7 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
     throw std::runtime_error("c07_dem_elastic_calibration: " + dem.status.diagnostic());
   const std::string dir = (std::filesystem::temp_directory_path() / ("demvv_v19_" + std::to_string(getpid()))).string();
   make_directories(dir);
-  write_atomically(dir + "/summary.json", dem.summary.dump(2));
+  write_atomically(dir + "/summary.json", json_text(dem.summary, 2));
   const double young = dem.summary["initial_modulus_pa"].get<double>();
   const double poisson = dem.summary["poisson_ratio"].get<double>();
 

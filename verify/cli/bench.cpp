@@ -4,6 +4,7 @@
 #include "verify/kinds/prepare.h"
 #include "verify/kinds/uniaxial.h"
 #include "verify/run/run.h"
+#include "verify/io/input.h"
 #include "verify/io/sample_file.h"
 
 #include "dem/bonds.h"
@@ -56,6 +57,10 @@ int command_bench(const BenchOptions &o)
     // The cylinder (H = D) whose ball count is closest to the request.
     const double fill = lattice == dem::Lattice::simple_cubic ? dem::pi / 6 : dem::pi / (3 * std::sqrt(2.0));
     const double d = std::cbrt(o.particles * 4.0 / 3.0 * dem::pi * r * r * r / fill * 4 / dem::pi);
+    const double sites = dem::lattice_cylinder_sites(lattice, r, 1.2 * d, 1.2 * d);
+    check_memory(sites * sizeof(dem::Vec3) + dem::estimated_memory_bytes(sites, 3),
+                 std::to_string(o.particles) + " balls", "demvv bench", "--particles", std::to_string(o.particles),
+                 "expected fewer particles");
     cell = dem::lattice_specimen(lattice, r, d, d, ball, platen, {}, false);
     for (double scale = 0.9; scale <= 1.2; scale += 0.005)
     {

@@ -8,8 +8,10 @@
 //   demvv plot RUN_DIR
 //
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
-// usage; 3 the simulation stopped on a numerical fault; 130 / 143 the run
-// was interrupted by SIGINT / SIGTERM (outputs kept, checkpoint written).
+// usage, including input that needs more memory than the machine has (most
+// refused before allocating, any other allocation failure caught here);
+// 3 the simulation stopped on a numerical fault; 130 / 143 the run was
+// interrupted by SIGINT / SIGTERM (outputs kept, checkpoint written).
 #include "verify/cli/bench.h"
 #include "verify/cli/commands.h"
 #include "verify/decks/deck.h"
@@ -17,6 +19,8 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <new>
+#include <stdexcept>
 
 int main(int argc, char **argv)
 {
@@ -139,6 +143,17 @@ int main(int argc, char **argv)
   catch (const std::runtime_error &e)
   {
     std::cerr << "demvv: " << e.what() << "\n";
+    return 2;
+  }
+  catch (const std::bad_alloc &)
+  {
+    std::cerr << "demvv: out of memory: the input needs more memory than this machine has: expected fewer balls "
+                 "or a smaller input\n";
+    return 2;
+  }
+  catch (const std::length_error &e)
+  {
+    std::cerr << "demvv: out of memory (" << e.what() << "): expected fewer balls or a smaller input\n";
     return 2;
   }
   return 0;

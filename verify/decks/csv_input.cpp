@@ -1,9 +1,10 @@
 #include "verify/decks/csv_input.h"
 
 #include "verify/decks/deck.h"
+#include "verify/io/input.h"
 
+#include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 namespace verify
@@ -33,9 +34,7 @@ CsvTable CsvTable::read(const std::string &path)
 {
   CsvTable t;
   t.path_ = path;
-  std::ifstream in(path);
-  if (!in)
-    throw DeckError(path + ": cannot open the CSV file (does it exist and is it readable?)");
+  std::istringstream in(read_input(path, "CSV file", max_table_bytes));
   std::string raw;
   int line = 0;
   while (std::getline(in, raw))
@@ -58,9 +57,10 @@ CsvTable CsvTable::read(const std::string &path)
     {
       char *end = nullptr;
       const double v = std::strtod(c[k].c_str(), &end);
-      if (c[k].empty() || *end != '\0')
+      const bool number = !c[k].empty() && *end == '\0';
+      if (!number || !std::isfinite(v))
         throw DeckError(path + ":" + std::to_string(line) + ": column '" + t.header_[k] + "' has value '" +
-                        c[k] + "': expected a number");
+                        escaped(c[k]) + "': expected a " + (number ? "finite number" : "number"));
       row.push_back(v);
     }
     t.rows_.push_back(std::move(row));

@@ -1,8 +1,10 @@
 // Reading numeric CSV tables named by decks (particle lists, bond lists).
 //
 // The first non-comment line is the header; every later non-empty line must
-// have one number per column.  Lines starting with '#' are comments.  Any
-// problem is a DeckError naming the file, the line and the column.
+// have one finite number per column (nan and inf are refused: no column of
+// any table means them).  Lines starting with '#' are comments.  Any
+// problem is a DeckError naming the file, the line and the column.  The
+// file must be a regular file of at most max_table_bytes (verify/io/input.h).
 #pragma once
 
 #include <string>

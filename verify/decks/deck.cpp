@@ -1,5 +1,7 @@
 #include "verify/decks/deck.h"
 
+#include "verify/io/input.h"
+
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/patterns.h>
 
@@ -9,7 +11,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -282,6 +283,10 @@ struct Deck::Impl final : DeckSchema
                   "` lists the keys of a " + kind + " deck");
     Entry &e = it->second;
     const std::string value = trim(raw);
+    if (!valid_utf8(value))
+      reject(o, "key '" + key + "' has value '" + escaped(value) +
+                  "': not UTF-8 text: expected UTF-8 (save the deck as UTF-8; summaries and sample files are JSON, "
+                  "which holds only UTF-8)");
     if (e.numeric)
       for (const std::string &item : split(value, ','))
         if (!item.empty() && !normal_double(item))
@@ -421,28 +426,21 @@ Deck Deck::defaults(const std::string &kind)
 
 Deck Deck::from_file(const std::string &path, const std::vector<std::string> &overrides)
 {
-  std::ifstream in(path);
-  if (!in)
-    throw DeckError(path + ": cannot open the deck file (does it exist and is it readable?)");
+  const std::string text = read_input(path, "deck file", max_deck_bytes);
   std::vector<PrmAssignment> lines;
   const bool json = path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
   if (json)
   {
-    nlohmann::json j;
-    try
-    {
-      in >> j;
-    }
-    catch (const nlohmann::json::exception &e)
-    {
-      throw DeckError(path + ": not valid JSON: " + e.what());
-    }
+    const nlohmann::json j = parse_json_input(text, path, "deck");
     if (!j.is_object())
       throw DeckError(path + ": expected a JSON object at the top level");
     flatten_json(j, "", lines, path);
   }
   else
+  {
+    std::istringstream in(text);
     lines = read_prm(path, in);
+  }
 
   const auto kind_line = std::find_if(lines.begin(), lines.end(), [](const auto &a) { return a.key == "kind"; });
   if (kind_line == lines.end())
@@ -453,6 +451,13 @@ Deck Deck::from_file(const std::string &path, const std::vector<std::string> &ov
     throw DeckError(path + ": key 'kind' is missing: expected 'set kind = " + names + "' at the top level");
   }
   const std::string where = kind_line->line > 0 ? path + ":" + std::to_string(kind_line->line) : path;
+  // The kind selects the schema: a second 'set kind' would be recorded in
+  // deck.prm while the first one runs.
+  const auto second_kind = std::find_if(kind_line + 1, lines.end(), [](const auto &a) { return a.key == "kind"; });
+  if (second_kind != lines.end())
+    throw DeckError(path + ":" + std::to_string(second_kind->line) + ": key 'kind' has value '" + second_kind->value +
+                    "': the kind is already set to '" + kind_line->value + "' at " + where +
+                    ": expected one 'set kind' per deck");
   auto impl = make_impl(kind_line->value, where);
   impl->path = path;
   for (const auto &a : lines)

@@ -46,6 +46,11 @@ std::string read_file(const std::string &path)
   return s.str();
 }
 
+std::string json_text(const nlohmann::json &doc, int indent)
+{
+  return doc.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 CsvSeries::CsvSeries(const std::string &path, const std::string &comment,
                      const std::vector<std::string> &columns)
   : columns_(columns.size()), path_(path)

@@ -81,4 +81,11 @@ std::string fnv1a_hex(const std::string &text);
 
 /// Reads a whole file; throws std::runtime_error if it cannot.
 std::string read_file(const std::string &path);
+
+/// JSON text of an output document (summary, sample, checkpoint).  Strings
+/// that are not valid UTF-8 (a path or argument in another encoding; deck
+/// text is refused at parse, verify/decks/deck.h) are written with U+FFFD
+/// in place of the bad bytes instead of aborting the write at the end of a
+/// run.  indent < 0: one line.
+std::string json_text(const nlohmann::json &doc, int indent = -1);
 } // namespace verify

@@ -1,10 +1,12 @@
 #include "verify/io/sample_file.h"
 
 #include "verify/decks/deck.h"
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 
 #include "dem/contact_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -17,8 +19,6 @@ namespace
 using nlohmann::json;
 
 json vec(const dem::Vec3 &v) { return json::array({v.x(), v.y(), v.z()}); }
-
-dem::Vec3 vec(const json &j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
 const std::vector<std::string> ball_columns = {
   "x_m",          "y_m",          "z_m",          "radius_m",      "density_kgpm3",  "kn_npm",
@@ -70,33 +70,158 @@ void append_state(json &row, const dem::ContactState &s)
     row.push_back(v);
 }
 
-dem::ContactState read_state(const json &row, std::size_t at)
+/// The fields of a parsed sample file, each read with its type and range
+/// checked: any problem is the one-line error naming the file, the field
+/// (as "walls[1].direction" or "balls.rows[5].radius_m"), its value and
+/// what was expected.
+class Fields
 {
-  dem::ContactState s;
-  s.touching = row.at(at).get<double>() != 0;
-  s.normal_force = row.at(at + 1).get<double>();
-  s.overlap = row.at(at + 2).get<double>();
-  s.normal = {row.at(at + 3).get<double>(), row.at(at + 4).get<double>(), row.at(at + 5).get<double>()};
-  s.shear_force = {row.at(at + 6).get<double>(), row.at(at + 7).get<double>(), row.at(at + 8).get<double>()};
-  s.friction_work = row.at(at + 9).get<double>();
-  s.bond_energy = row.at(at + 10).get<double>();
-  return s;
-}
+public:
+  explicit Fields(std::string path) : path_(std::move(path)) {}
 
-/// Rows of a {columns, rows} table, checking its columns.
-const json &table_rows(const json &doc, const char *name, const std::vector<std::string> &columns,
-                       const std::string &path)
+  [[noreturn]] void fail(const std::string &key, const json &value, const std::string &expected) const
+  {
+    std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (text.size() > 60)
+      text = text.substr(0, 57) + "...";
+    fail_key(path_, key, text, expected);
+  }
+
+  /// Member `name` of the object at `key` (missing: the one-line error).
+  const json &member(const json &object, const std::string &key, const std::string &name,
+                     const std::string &expected) const
+  {
+    const std::string full = key.empty() ? name : key + "." + name;
+    if (!object.is_object())
+      fail(key.empty() ? "(top level)" : key, object, "expected a JSON object");
+    const auto it = object.find(name);
+    if (it == object.end())
+      throw DeckError(path_ + ": key '" + full + "' is missing: expected " + expected);
+    return *it;
+  }
+
+  enum class Sign
+  {
+    any,
+    non_negative,
+    positive,
+  };
+
+  double real(const json &j, const std::string &key, Sign sign = Sign::any, const std::string &unit = "") const
+  {
+    const double v = j.is_number() ? j.get<double>() : std::nan("");
+    const bool ok = std::isfinite(v) && (sign == Sign::any || (sign == Sign::positive ? v > 0 : v >= 0));
+    if (!ok)
+      fail(key, j,
+           std::string("expected a finite number") +
+             (sign == Sign::positive ? " > 0" : sign == Sign::non_negative ? " >= 0" : "") +
+             (unit.empty() ? "" : " (" + unit + ")"));
+    return v;
+  }
+
+  /// An integral number in [min, max] (integers may be written as 3 or 3.0).
+  long long integer(const json &j, const std::string &key, long long min, long long max,
+                    const std::string &what) const
+  {
+    const double v = j.is_number() ? j.get<double>() : std::nan("");
+    if (!(v >= double(min) && v <= double(max) && v == std::floor(v)))
+      fail(key, j, "expected " + what + ", an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return j.is_number_integer() ? j.get<long long>() : static_cast<long long>(v);
+  }
+
+  bool flag(const json &j, const std::string &key) const
+  {
+    if (j.is_boolean())
+      return j.get<bool>();
+    if (j.is_number() && (j.get<double>() == 0 || j.get<double>() == 1))
+      return j.get<double>() == 1;
+    fail(key, j, "expected true or false (or 1 or 0)");
+  }
+
+  std::string text(const json &j, const std::string &key) const
+  {
+    if (!j.is_string())
+      fail(key, j, "expected a string");
+    return j.get<std::string>();
+  }
+
+  dem::Vec3 vec3(const json &j, const std::string &key, const std::string &unit, bool nonzero = false) const
+  {
+    const bool shape = j.is_array() && j.size() == 3 &&
+                       std::all_of(j.begin(), j.end(), [](const json &x) { return x.is_number(); });
+    dem::Vec3 v = dem::Vec3::Zero();
+    if (shape)
+      v = {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+    if (!shape || !v.allFinite() || (nonzero && !(v.norm() > 0)))
+      fail(key, j, std::string("expected three finite numbers") + (nonzero ? ", not all zero" : "") + " (" + unit + ")");
+    return v;
+  }
+
+  /// The rows of a {columns, rows} table, each an array of `columns.size()` values.
+  const json &table(const json &doc, const std::string &name, const std::vector<std::string> &columns) const
+  {
+    const json &t = member(doc, "", name, "a {columns, rows} table: expected a demvv sample file");
+    const json &written = member(t, name, "columns", "the column names");
+    if (!written.is_array() || written != json(columns))
+    {
+      std::string list;
+      for (const std::string &c : columns)
+        list += (list.empty() ? "" : ",") + c;
+      fail(name + ".columns", written, "expected the columns this demvv writes: " + list);
+    }
+    const json &rows = member(t, name, "rows", "an array of rows");
+    if (!rows.is_array())
+      fail(name + ".rows", rows, "expected an array of rows");
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (!rows[r].is_array() || rows[r].size() != columns.size())
+        fail(row_key(name, r), rows[r], "expected an array of " + std::to_string(columns.size()) + " values");
+    return rows;
+  }
+
+  static std::string row_key(const std::string &table, std::size_t r)
+  {
+    return table + ".rows[" + std::to_string(r) + "]";
+  }
+
+  /// Key of one value of a table row: "balls.rows[5].radius_m".
+  static std::string cell_key(const std::string &table, std::size_t r, const std::string &column)
+  {
+    return row_key(table, r) + "." + column;
+  }
+
+  /// A contact's state from its columns at `at`.
+  dem::ContactState state(const json &row, std::size_t at, const std::string &table, std::size_t r) const
+  {
+    const auto v = [&](std::size_t k, Sign sign = Sign::any) {
+      return real(row[at + k], cell_key(table, r, state_columns[k]), sign);
+    };
+    dem::ContactState s;
+    s.touching = flag(row[at], cell_key(table, r, state_columns[0]));
+    s.normal_force = v(1);
+    s.overlap = v(2);
+    s.normal = {v(3), v(4), v(5)};
+    s.shear_force = {v(6), v(7), v(8)};
+    s.friction_work = v(9);
+    s.bond_energy = v(10);
+    return s;
+  }
+
+  const std::string &path() const { return path_; }
+
+private:
+  std::string path_;
+};
+
+/// Where a wall index of the cell may point: its wall's shape, or -1.
+void check_cell_wall(const Fields &f, const json &cell, const char *name, dem::WallIndex index,
+                     const std::vector<dem::Wall> &walls, dem::WallShape shape)
 {
-  if (!doc.contains(name))
-    throw DeckError(path + ": no '" + std::string(name) + "' table: expected a demvv sample file");
-  const json &t = doc.at(name);
-  if (t.at("columns").get<std::vector<std::string>>() != columns)
-    throw DeckError(path + ": table '" + std::string(name) + "' has other columns than this demvv writes");
-  for (const json &row : t.at("rows"))
-    if (row.size() != columns.size())
-      throw DeckError(path + ": a row of table '" + std::string(name) + "' has " + std::to_string(row.size()) +
-                      " values for " + std::to_string(columns.size()) + " columns");
-  return t.at("rows");
+  if (index < 0)
+    return;
+  if (index >= static_cast<dem::WallIndex>(walls.size()) || walls[index].shape != shape)
+    f.fail(std::string("cell.") + name, cell.at(name),
+           "expected -1 (none) or the index of a " + std::string(shape == dem::WallShape::plane ? "plane" : "cylinder") +
+             " wall among the file's " + std::to_string(walls.size()) + " walls");
 }
 } // namespace
 
@@ -252,133 +377,207 @@ void write_sample(const std::string &path, const SampleFile &sample)
     wall_contacts.push_back(row);
   }
   doc["wall_contacts"] = {{"columns", wall_contact_columns()}, {"rows", wall_contacts}};
-  write_atomically(path, doc.dump() + "\n");
+  write_atomically(path, json_text(doc) + "\n");
 }
 
 SampleFile read_sample(const std::string &path)
 {
-  json doc;
-  try
+  const json doc = parse_json_input(read_input(path, "sample file", max_table_bytes), path, "demvv sample file");
+  const Fields f(path);
+  using Sign = Fields::Sign;
+  if (!doc.is_object() || doc.value("format", json()) != "demvv-sample")
+    throw DeckError(path + ": no \"format\": \"demvv-sample\" at the top level: expected a demvv sample file");
+  const int version = static_cast<int>(
+    f.integer(f.member(doc, "", "format_version", "the format version"), "format_version", 1, format_version,
+              "a format version this demvv reads"));
+  SampleFile out;
+  if (doc.contains("title"))
+    out.title = f.text(doc["title"], "title");
+  if (doc.contains("seed"))
+    out.seed = f.integer(doc["seed"], "seed", std::numeric_limits<long long>::min() / 2,
+                         std::numeric_limits<long long>::max() / 2, "a seed");
+  out.contact_law = doc.contains("contact_law") ? f.text(doc["contact_law"], "contact_law") : "linear";
+  // Version 1 files have no law state: every contact's is at rest.
+  const std::vector<std::string_view> law_fields =
+    version == 1 ? std::vector<std::string_view>{} : sample_law(out.contact_law, path).state_fields;
+  // Free-form reports: an object, or null when the writer had none.
+  for (const auto &[name, into] : {std::pair<const char *, json *>{"preparation", &out.preparation},
+                                   {"provenance", &out.provenance}})
   {
-    doc = json::parse(read_file(path));
+    const json &j = doc.value(name, json());
+    if (!j.is_object() && !j.is_null())
+      f.fail(name, j, "expected a JSON object (or null)");
+    *into = j.is_null() ? json::object() : j;
   }
-  catch (const std::runtime_error &)
-  {
-    throw DeckError(path + ": cannot read the sample file (does it exist?)");
-  }
-  catch (const json::exception &e)
-  {
-    throw DeckError(path + ": not a valid sample file (JSON error: " + std::string(e.what()) + ")");
-  }
-  const int version = doc.value("format_version", 0);
-  if (doc.value("format", "") != "demvv-sample" || version < 1 || version > format_version)
-    throw DeckError(path + ": not a demvv sample file of format version 1 to " + std::to_string(format_version));
-  try
-  {
-    SampleFile out;
-    out.title = doc.value("title", "");
-    out.seed = doc.value("seed", 0LL);
-    out.contact_law = doc.value("contact_law", "linear");
-    // Version 1 files have no law state: every contact's is at rest.
-    const std::vector<std::string_view> law_fields =
-      version == 1 ? std::vector<std::string_view>{} : sample_law(out.contact_law, path).state_fields;
-    out.preparation = doc.value("preparation", json::object());
-    out.provenance = doc.value("provenance", json::object());
-    const json &cell = doc.at("cell");
-    out.cell.diameter = cell.at("diameter_m");
-    out.cell.height = cell.at("height_m");
-    out.cell.bottom = cell.at("bottom");
-    out.cell.top = cell.at("top");
-    out.cell.lateral = cell.at("lateral");
 
-    dem::Snapshot &s = out.snapshot;
-    for (const json &w : doc.at("walls"))
-    {
-      dem::Wall wall;
-      wall.name = w.at("name");
-      wall.shape = w.at("shape") == "plane" ? dem::WallShape::plane : dem::WallShape::cylinder;
-      wall.point = vec(w.at("point_m"));
-      wall.direction = vec(w.at("direction"));
-      wall.radius = w.at("radius_m");
-      wall.velocity = vec(w.at("velocity_mps"));
-      wall.radial_velocity = w.at("radial_velocity_mps");
-      wall.props = {w.at("kn_npm").get<double>(), w.at("ks_npm").get<double>(), w.at("friction").get<double>()};
-      wall.enabled = w.at("enabled");
-      s.walls.push_back(wall);
-    }
-    dem::SimulationClock &c = s.clock;
-    for (const json &row : table_rows(doc, "balls", ball_columns, path))
-    {
-      dem::BallSpec b;
-      b.position = dem::Vec3(row[0].get<double>(), row[1].get<double>(), row[2].get<double>());
-      b.radius = row[3];
-      b.density = row[4];
-      b.kn = row[5];
-      b.ks = row[6];
-      b.friction = row[7];
-      b.velocity = dem::Vec3(row[8].get<double>(), row[9].get<double>(), row[10].get<double>());
-      b.spin = dem::Vec3(row[11].get<double>(), row[12].get<double>(), row[13].get<double>());
-      b.hold_velocity = row[14].get<double>() != 0;
-      b.hold_spin = row[15].get<double>() != 0;
-      if (!(b.radius > 0))
-        throw DeckError(path + ": a ball has radius " + row[3].dump() + ": expected a radius > 0 m");
-      s.particles.add(b);
-      c.ball_energy.push_back({row[16].get<double>(), row[17].get<double>(), row[18].get<double>(),
-                               row[19].get<double>()});
-    }
-    const auto n = static_cast<long>(s.particles.size());
-    const std::vector<std::string> columns = contact_columns(law_fields, version);
-    const std::size_t state_at = version >= 2 ? 9 : 8;
-    const std::size_t law_at = columns.size() - law_fields.size();
-    s.contact_law = out.contact_law;
-    for (const json &row : table_rows(doc, "contacts", columns, path))
-    {
-      dem::Contact k;
-      k.first = row[0];
-      k.second = row[1];
-      if (k.first < 0 || k.second >= n || k.first >= k.second)
-        throw DeckError(path + ": contact (" + row[0].dump() + ", " + row[1].dump() + ") does not name two balls");
-      k.params = {row[2].get<double>(), row[3].get<double>(), row[4].get<double>()};
-      k.bond.intact = row[5].get<double>() != 0;
-      k.bond.normal_strength = row[6];
-      k.bond.shear_strength = row[7];
-      if (version >= 2)
-        k.bond.break_distance = row[8].is_null() ? std::numeric_limits<double>::infinity() : row[8].get<double>();
-      k.state = read_state(row, state_at);
-      s.contacts.push_back(k);
-      if (law_fields.empty())
-        continue;
-      dem::LawState law;
-      for (std::size_t f = 0; f < law_fields.size(); ++f)
-        law.value[f] = row[law_at + f].get<double>();
-      s.law_states.push_back(law);
-    }
-    s.wall_history.assign(static_cast<std::size_t>(n) * s.walls.size(), dem::ContactState{});
-    for (const json &row : table_rows(doc, "wall_contacts", wall_contact_columns(), path))
-    {
-      const long w = row[0], b = row[1];
-      if (w < 0 || w >= static_cast<long>(s.walls.size()) || b < 0 || b >= n)
-        throw DeckError(path + ": wall contact (" + row[0].dump() + ", " + row[1].dump() + ") is out of range");
-      s.wall_history[static_cast<std::size_t>(w * n + b)] = read_state(row, 2);
-    }
-    const json &clock = doc.at("clock");
-    c.time = clock.at("time_s");
-    c.steps = clock.at("steps");
-    c.last_time_step = clock.at("last_time_step_s");
-    c.initial_energy = clock.at("initial_energy_j");
-    c.initial_recorded = clock.at("initial_recorded");
-    c.removed_wall_strain = clock.at("removed_wall_strain_j");
-    c.removed_wall_friction = clock.at("removed_wall_friction_j");
-    c.broken_tension = clock.at("bonds_broken_tension");
-    c.broken_shear = clock.at("bonds_broken_shear");
-    c.broken_displacement = clock.value("bonds_broken_displacement", std::size_t{0});
-    c.retired.friction_work = clock.at("retired_friction_work_j");
-    c.retired.bond_energy = clock.at("retired_bond_energy_j");
-    return out;
-  }
-  catch (const json::exception &e)
+  dem::Snapshot &s = out.snapshot;
+  const json &walls = f.member(doc, "", "walls", "an array of walls");
+  if (!walls.is_array())
+    f.fail("walls", walls, "expected an array of walls");
+  for (std::size_t k = 0; k < walls.size(); ++k)
   {
-    throw DeckError(path + ": malformed sample file (" + std::string(e.what()) + ")");
+    const json &w = walls[k];
+    const std::string key = "walls[" + std::to_string(k) + "]";
+    const auto at = [&](const char *name) -> const json & { return f.member(w, key, name, "a wall field"); };
+    const auto sub = [&](const char *name) { return key + "." + name; };
+    dem::Wall wall;
+    wall.name = f.text(at("name"), sub("name"));
+    const std::string shape = f.text(at("shape"), sub("shape"));
+    if (shape != "plane" && shape != "cylinder")
+      f.fail(sub("shape"), at("shape"), "expected plane or cylinder");
+    wall.shape = shape == "plane" ? dem::WallShape::plane : dem::WallShape::cylinder;
+    wall.point = f.vec3(at("point_m"), sub("point_m"), "m");
+    wall.direction = f.vec3(at("direction"), sub("direction"), "-", true);
+    wall.radius = f.real(at("radius_m"), sub("radius_m"), wall.shape == dem::WallShape::cylinder ? Sign::positive
+                                                                                                  : Sign::non_negative,
+                         "m");
+    wall.velocity = f.vec3(at("velocity_mps"), sub("velocity_mps"), "m/s");
+    wall.radial_velocity = f.real(at("radial_velocity_mps"), sub("radial_velocity_mps"), Sign::any, "m/s");
+    wall.props = {f.real(at("kn_npm"), sub("kn_npm"), Sign::positive, "N/m"),
+                  f.real(at("ks_npm"), sub("ks_npm"), Sign::non_negative, "N/m"),
+                  f.real(at("friction"), sub("friction"), Sign::non_negative)};
+    wall.enabled = f.flag(at("enabled"), sub("enabled"));
+    s.walls.push_back(wall);
   }
+
+  const json &cell = f.member(doc, "", "cell", "the cell (diameter, height and wall indices)");
+  const auto cell_at = [&](const char *name) -> const json & { return f.member(cell, "cell", name, "a cell field"); };
+  const long long wall_count = static_cast<long long>(s.walls.size());
+  out.cell.diameter = f.real(cell_at("diameter_m"), "cell.diameter_m", Sign::non_negative, "m");
+  out.cell.height = f.real(cell_at("height_m"), "cell.height_m", Sign::non_negative, "m");
+  for (const auto &[name, index] : {std::pair<const char *, dem::WallIndex *>{"bottom", &out.cell.bottom},
+                                    {"top", &out.cell.top},
+                                    {"lateral", &out.cell.lateral}})
+    *index = static_cast<dem::WallIndex>(
+      f.integer(cell_at(name), std::string("cell.") + name, -1, wall_count - 1, "-1 (none) or a wall index"));
+  check_cell_wall(f, cell, "bottom", out.cell.bottom, s.walls, dem::WallShape::plane);
+  check_cell_wall(f, cell, "top", out.cell.top, s.walls, dem::WallShape::plane);
+  check_cell_wall(f, cell, "lateral", out.cell.lateral, s.walls, dem::WallShape::cylinder);
+  if (out.cell.top >= 0 && out.cell.top == out.cell.bottom)
+    f.fail("cell.top", cell.at("top"), "expected another wall than cell.bottom");
+
+  dem::SimulationClock &c = s.clock;
+  const json &balls = f.table(doc, "balls", ball_columns);
+  if (balls.size() > static_cast<std::size_t>(std::numeric_limits<dem::Index>::max()))
+    f.fail("balls.rows", json(balls.size()), "expected fewer balls than a ball index can count");
+  s.particles.reserve(static_cast<dem::Index>(balls.size()));
+  for (std::size_t r = 0; r < balls.size(); ++r)
+  {
+    const json &row = balls[r];
+    const auto v = [&](std::size_t k, Sign sign = Sign::any) {
+      return f.real(row[k], Fields::cell_key("balls", r, ball_columns[k]), sign);
+    };
+    dem::BallSpec b;
+    b.position = dem::Vec3(v(0), v(1), v(2));
+    b.radius = v(3, Sign::positive);
+    b.density = v(4, Sign::positive);
+    b.kn = v(5, Sign::positive);
+    b.ks = v(6, Sign::non_negative);
+    b.friction = v(7, Sign::non_negative);
+    b.velocity = dem::Vec3(v(8), v(9), v(10));
+    b.spin = dem::Vec3(v(11), v(12), v(13));
+    b.hold_velocity = f.flag(row[14], Fields::cell_key("balls", r, ball_columns[14]));
+    b.hold_spin = f.flag(row[15], Fields::cell_key("balls", r, ball_columns[15]));
+    s.particles.add(b);
+    c.ball_energy.push_back({v(16), v(17), v(18), v(19)});
+  }
+  const auto n = static_cast<long long>(s.particles.size());
+  const std::vector<std::string> columns = contact_columns(law_fields, version);
+  const std::size_t state_at = version >= 2 ? 9 : 8;
+  const std::size_t law_at = columns.size() - law_fields.size();
+  s.contact_law = out.contact_law;
+  const json &contacts = f.table(doc, "contacts", columns);
+  for (std::size_t r = 0; r < contacts.size(); ++r)
+  {
+    const json &row = contacts[r];
+    const auto key = [&](std::size_t k) { return Fields::cell_key("contacts", r, columns[k]); };
+    const auto v = [&](std::size_t k, Sign sign = Sign::any) { return f.real(row[k], key(k), sign); };
+    dem::Contact k;
+    k.first = static_cast<dem::Index>(f.integer(row[0], key(0), 0, n - 1, "a ball index"));
+    k.second = static_cast<dem::Index>(f.integer(row[1], key(1), 0, n - 1, "a ball index"));
+    if (k.second <= k.first)
+      f.fail(key(1), row[1], "expected a ball index above first (" + std::to_string(k.first) + ")");
+    // The table finds contacts by bisection: the rows must be sorted, each pair once.
+    if (!s.contacts.empty() && !(std::pair(s.contacts.back().first, s.contacts.back().second) <
+                                 std::pair(k.first, k.second)))
+      f.fail(Fields::row_key("contacts", r), row, "expected the rows sorted by (first, second), each pair once");
+    k.params = {v(2, Sign::non_negative), v(3, Sign::non_negative), v(4, Sign::non_negative)};
+    k.bond.intact = f.flag(row[5], key(5));
+    k.bond.normal_strength = v(6, Sign::non_negative);
+    k.bond.shear_strength = v(7, Sign::non_negative);
+    // No displacement criterion is an infinite distance: null in JSON.
+    if (version >= 2)
+      k.bond.break_distance =
+        row[8].is_null() ? std::numeric_limits<double>::infinity() : f.real(row[8], key(8), Sign::positive, "m");
+    k.state = f.state(row, state_at, "contacts", r);
+    s.contacts.push_back(k);
+    if (law_fields.empty())
+      continue;
+    dem::LawState law;
+    for (std::size_t l = 0; l < law_fields.size(); ++l)
+      law.value[l] = v(law_at + l);
+    s.law_states.push_back(law);
+  }
+  s.wall_history.assign(static_cast<std::size_t>(n) * s.walls.size(), dem::ContactState{});
+  const json &wall_contacts = f.table(doc, "wall_contacts", wall_contact_columns());
+  for (std::size_t r = 0; r < wall_contacts.size(); ++r)
+  {
+    const json &row = wall_contacts[r];
+    const long long w = f.integer(row[0], Fields::cell_key("wall_contacts", r, "wall"), 0, wall_count - 1,
+                                  "a wall index");
+    const long long b = f.integer(row[1], Fields::cell_key("wall_contacts", r, "ball"), 0, n - 1, "a ball index");
+    s.wall_history[static_cast<std::size_t>(w * n + b)] = f.state(row, 2, "wall_contacts", r);
+  }
+
+  const json &clock = f.member(doc, "", "clock", "the clock (time, steps and the energy ledger)");
+  const auto at = [&](const char *name) -> const json & { return f.member(clock, "clock", name, "a clock field"); };
+  const auto real = [&](const char *name, Sign sign = Sign::any) {
+    return f.real(at(name), std::string("clock.") + name, sign);
+  };
+  const auto count = [&](const char *name) {
+    return f.integer(at(name), std::string("clock.") + name, 0, std::numeric_limits<long>::max() / 2, "a count");
+  };
+  c.time = real("time_s", Sign::non_negative);
+  c.steps = static_cast<long>(count("steps"));
+  c.last_time_step = real("last_time_step_s", Sign::non_negative);
+  c.initial_energy = real("initial_energy_j");
+  c.initial_recorded = f.flag(at("initial_recorded"), "clock.initial_recorded");
+  c.removed_wall_strain = real("removed_wall_strain_j");
+  c.removed_wall_friction = real("removed_wall_friction_j");
+  c.broken_tension = static_cast<std::size_t>(count("bonds_broken_tension"));
+  c.broken_shear = static_cast<std::size_t>(count("bonds_broken_shear"));
+  c.broken_displacement = clock.contains("bonds_broken_displacement")
+                            ? static_cast<std::size_t>(count("bonds_broken_displacement"))
+                            : 0;
+  c.retired.friction_work = real("retired_friction_work_j");
+  c.retired.bond_energy = real("retired_bond_energy_j");
+  return out;
+}
+
+void check_test_cell(const SampleFile &sample, const std::string &path)
+{
+  const dem::Specimen &cell = sample.cell;
+  const std::vector<dem::Wall> &walls = sample.snapshot.walls;
+  if (cell.bottom < 0 || cell.top < 0)
+    fail_key(path, cell.bottom < 0 ? "cell.bottom" : "cell.top", "-1",
+             "expected the index of a platen (a sample written by a prepare run names both)");
+  if (!(cell.diameter > 0))
+    fail_key(path, "cell.diameter_m", format_number(cell.diameter), "expected a diameter > 0 m");
+  if (!(cell.height > 0))
+    fail_key(path, "cell.height_m", format_number(cell.height), "expected a height > 0 m");
+  const dem::Wall &bottom = walls[cell.bottom], &top = walls[cell.top];
+  // A test moves the top platen along its normal and measures the strain
+  // along the bottom one's: they must face each other across the sample.
+  const dem::Vec3 up = bottom.direction.normalized(), down = top.direction.normalized();
+  if ((up + down).norm() > 1e-6)
+    fail_key(path, "walls[" + std::to_string(cell.top) + "].direction",
+             format_number(top.direction.x()) + ", " + format_number(top.direction.y()) + ", " +
+               format_number(top.direction.z()),
+             "expected the top platen's normal opposite to the bottom platen's (walls[" +
+               std::to_string(cell.bottom) + "].direction)");
+  const double gap = (top.point - bottom.point).dot(up);
+  if (!(gap > 0))
+    fail_key(path, "walls[" + std::to_string(cell.top) + "].point_m", format_number(gap) + " m from the bottom platen",
+             "expected the top platen above the bottom one, along the bottom platen's normal");
 }
 } // namespace verify

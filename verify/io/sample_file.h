@@ -72,8 +72,20 @@ void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const 
 /// Writes a sample file atomically.
 void write_sample(const std::string &path, const SampleFile &sample);
 
-/// Reads a sample file; DeckError (naming the file and what is wrong) on failure.
+/// Reads a sample file.  Every field is checked on load: its type, its
+/// range (finite numbers; radii, densities and stiffnesses > 0; flags 0 or
+/// 1), and every cross-reference (cell and wall-contact wall indices name
+/// walls of the right shape, contacts name two balls, sorted, each pair
+/// once).  Any problem is the one-line DeckError naming the file, the field
+/// ("balls.rows[5].radius_m"), its value and what was expected.  A file that
+/// names no platens (a checkpoint) loads; check_test_cell() refuses it for a
+/// test.
 SampleFile read_sample(const std::string &path);
+
+/// Refuses (one-line DeckError naming `path`) a sample a uniaxial test
+/// cannot run on: no platens, a cell without size, or platens that do not
+/// face each other across a positive gap (the strain would never grow).
+void check_test_cell(const SampleFile &sample, const std::string &path);
 
 /// The preparation report as JSON.
 nlohmann::json report_json(const dem::PackingReport &report);

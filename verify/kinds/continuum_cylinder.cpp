@@ -331,7 +331,7 @@ CylinderResult run_cylinder(const CylinderDeckSpec &spec, const RunOptions &opti
       nlohmann::json copy = s;
       copy["provenance"] = provenance(threads, 0, spec.deck.resolved);
       copy["provenance"]["note"] = "one level of a GCI study: refinements overridden to " + std::to_string(level);
-      write_atomically(level_dir + "/summary.json", copy.dump(2) + "\n");
+      write_atomically(level_dir + "/summary.json", json_text(copy, 2) + "\n");
     }
     level_summaries.push_back({{"refinements", level},
                                {"cells", runs.back().mesh.cells},

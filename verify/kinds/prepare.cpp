@@ -1,6 +1,7 @@
 #include "verify/kinds/prepare.h"
 
 #include "verify/decks/deck_sections.h"
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 #include "verify/io/paraview.h"
 
@@ -113,7 +114,12 @@ dem::PackingSettings parse_prepare(const Deck &deck)
   const dem::PackingSettings settings = read_settings(deck);
   try
   {
-    dem::cell_size(settings); // refuse an impossible packing before any file is written
+    // Refuse an impossible packing, or one that cannot fit in memory, before any file is written.
+    const dem::CellSize cell = dem::cell_size(settings);
+    const std::string key = key_of(settings.particles > 0 ? "particles" : "radius");
+    check_memory(dem::estimated_memory_bytes(double(cell.particles), 3),
+                 format_number(double(cell.particles)) + " balls", deck.path(), key, deck.text(key),
+                 "expected fewer balls (a larger ball radius or a smaller cell)");
   }
   catch (const dem::PackingError &e)
   {
@@ -183,7 +189,11 @@ SampleFile load_or_prepare_sample(const std::string &path, const std::string &ca
 {
   const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
   if (!is_deck)
-    return read_sample(path);
+  {
+    SampleFile sample = read_sample(path);
+    check_test_cell(sample, path);
+    return sample;
+  }
   const Deck deck = Deck::from_file(path);
   if (deck.kind() != "prepare")
     throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
@@ -192,7 +202,11 @@ SampleFile load_or_prepare_sample(const std::string &path, const std::string &ca
   const std::string key = deck.resolved() + "\npreparation revision " + std::to_string(dem::preparation_revision);
   const std::string dir = cache_dir + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
   if (std::filesystem::exists(dir + "/sample.json"))
-    return read_sample(dir + "/sample.json");
+  {
+    SampleFile sample = read_sample(dir + "/sample.json");
+    check_test_cell(sample, dir + "/sample.json");
+    return sample;
+  }
   PrepareResult r = run_prepare(deck, {dir, 0, true});
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());

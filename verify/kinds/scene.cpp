@@ -2,9 +2,12 @@
 
 #include "verify/decks/csv_input.h"
 #include "verify/decks/deck_sections.h"
+#include "verify/io/input.h"
 
 #include "dem/measure.h"
+#include "dem/neighbors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -53,7 +56,8 @@ void declare_scene(DeckSchema &s)
          "CSV of balls, relative to the deck: x_m,y_m,z_m,radius_m [m] and optional vx_mps,vy_mps,vz_mps "
          "[m/s], wx_radps,wy_radps,wz_radps [rad/s], hold_velocity, hold_spin (0/1: keep the given "
          "velocity / spin whatever the forces), density_kgpm3 [kg/m^3], kn_npm, ks_npm [N/m], friction "
-         "[-] (these four override the balls section per ball).");
+         "[-] (these four override the balls section per ball).  Every value must be a finite number, and no "
+         "two balls may start overlapping by more than half the smaller radius.");
   s.leave();
   declare_ball_properties(s);
   declare_contact_law(s);
@@ -109,6 +113,33 @@ dem::Index parse_index(const Deck &deck, const std::string &key, const std::stri
   return static_cast<dem::Index>(v);
 }
 
+/// Balls that start overlapping by more than half the smaller radius are
+/// refused: such a contact stores a spring energy the linear law was never
+/// meant for (it is released in the first steps and flings the balls apart),
+/// and balls at one point have no contact normal at all.  Half a radius is
+/// also the displacement per step the engine calls runaway motion.
+/// Deliberately pre-compressed pairs (a fraction of a percent) pass.
+void check_overlaps(const CsvTable &t, const dem::ParticleStore &p)
+{
+  dem::NeighborList touching(0);
+  touching.rebuild(p);
+  for (const dem::Pair &pair : touching.pairs())
+  {
+    const auto [i, j] = pair;
+    const double distance = (p.position[j] - p.position[i]).norm();
+    const double overlap = p.radius[i] + p.radius[j] - distance;
+    const double smaller = std::min(p.radius[i], p.radius[j]);
+    if (overlap > 0.5 * smaller)
+    {
+      std::ostringstream what;
+      what << "particle " << j << " overlaps particle " << i << " (line " << t.line(static_cast<std::size_t>(i))
+           << ") by " << overlap << " m at the start: expected balls that overlap by at most half the smaller "
+           << "radius (" << 0.5 * smaller << " m)";
+      t.fail(static_cast<std::size_t>(j), "x_m", what.str());
+    }
+  }
+}
+
 dem::ParticleStore parse_particles(const Deck &deck)
 {
   const CsvTable t = CsvTable::read(deck.file("particles/file"));
@@ -118,9 +149,13 @@ dem::ParticleStore parse_particles(const Deck &deck)
     if (!t.has(c))
       throw DeckError(t.path() + ": column '" + std::string(c) +
                       "' is missing: expected a header with x_m,y_m,z_m,radius_m");
+  check_memory(dem::estimated_memory_bytes(double(t.rows()), int(deck.instances("walls", "plane").size() +
+                                                                  deck.instances("walls", "cylinder").size())),
+               std::to_string(t.rows()) + " balls", t.path(), "rows", std::to_string(t.rows()),
+               "expected fewer balls");
   const dem::BallSpec common = parse_ball_properties(deck);
   dem::ParticleStore p;
-  p.reserve(t.rows());
+  p.reserve(static_cast<dem::Index>(t.rows()));
   for (std::size_t r = 0; r < t.rows(); ++r)
   {
     dem::BallSpec b = common;
@@ -132,15 +167,17 @@ dem::ParticleStore parse_particles(const Deck &deck)
     b.kn = t.get(r, "kn_npm", b.kn);
     b.ks = t.get(r, "ks_npm", b.ks);
     b.friction = t.get(r, "friction", b.friction);
+    // The table holds finite numbers only (csv_input.h); the deck's balls
+    // section is checked by its patterns.
     if (!(b.radius > 0))
       t.fail(r, "radius_m", "expected a radius > 0 m");
     if (!(b.density > 0))
       t.fail(r, "density_kgpm3", "expected a density > 0 kg/m^3");
     if (!(b.kn > 0))
       t.fail(r, "kn_npm", "expected a normal stiffness > 0 N/m");
-    if (b.ks < 0)
+    if (!(b.ks >= 0))
       t.fail(r, "ks_npm", "expected a shear stiffness >= 0 N/m");
-    if (b.friction < 0)
+    if (!(b.friction >= 0))
       t.fail(r, "friction", "expected a friction coefficient >= 0");
     for (const char *flag : {"hold_velocity", "hold_spin"})
     {
@@ -155,6 +192,7 @@ dem::ParticleStore parse_particles(const Deck &deck)
         throw DeckError(t.path() + ":" + std::to_string(t.line(r)) + ": non-finite position, velocity or spin");
     p.add(b);
   }
+  check_overlaps(t, p);
   return p;
 }
 
@@ -304,6 +342,11 @@ public:
   double clock(const dem::Simulation &sim) const override { return sim.time(); }
   double fraction_done(const dem::Simulation &sim) const override { return sim.time() / spec_.duration; }
   bool finished(const dem::Simulation &sim) const override { return sim.time() >= spec_.duration; }
+  double time_left(const dem::Simulation &sim) const override { return spec_.duration - sim.time(); }
+  [[noreturn]] void refuse_duration(const std::string &expected) const override
+  {
+    spec_.deck.fail("run/duration", format_number(spec_.duration), expected);
+  }
   std::string state_text(const dem::Simulation &sim) const override
   {
     char text[64];

@@ -2,6 +2,7 @@
 
 #include "verify/run/analysis.h"
 #include "verify/decks/deck_sections.h"
+#include "verify/io/input.h"
 #include "verify/io/paraview.h"
 #include "verify/kinds/prepare.h"
 
@@ -198,9 +199,10 @@ Setup sample_setup(const UniaxialSpec &spec)
   s.cell = std::move(sample.cell);
   std::ostringstream d;
   d << "prepared sample " << spec.sample_name << " of " << s.sim->particles().size() << " balls";
-  if (preparation.contains("solid_fraction_cell"))
-    d << " (cell solid fraction " << preparation["solid_fraction_cell"].get<double>() << ", coordination "
-      << preparation["coordination_number"].get<double>() << ")";
+  const nlohmann::json fraction = preparation.value("solid_fraction_cell", nlohmann::json());
+  const nlohmann::json coordination = preparation.value("coordination_number", nlohmann::json());
+  if (fraction.is_number() && coordination.is_number())
+    d << " (cell solid fraction " << fraction.get<double>() << ", coordination " << coordination.get<double>() << ")";
   s.cell.description = d.str();
   return s;
 }
@@ -259,6 +261,13 @@ public:
     return test_.axial_strain(sim) / spec_.final_strain;
   }
   bool finished(const dem::Simulation &sim) const override { return test_.finished(sim); }
+  double time_left(const dem::Simulation &sim) const override { return test_.time_left(sim); }
+  [[noreturn]] void refuse_duration(const std::string &expected) const override
+  {
+    if (spec_.by_platen_speed)
+      spec_.deck.fail("loading/platen speed", format_number(spec_.platen_speed), expected);
+    spec_.deck.fail("loading/strain rate", format_number(spec_.strain_rate), expected);
+  }
   std::string state_text(const dem::Simulation &sim) const override
   {
     char text[96];
@@ -426,14 +435,24 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
       deck.fail("sample/file", "expected a sample file (.json) or a prepare deck (.prm) when source = file");
     spec.sample_file = deck.file("sample/file");
     spec.sample_name = deck.text("sample/file");
-    if (!std::filesystem::is_regular_file(spec.sample_file))
+    if (!std::filesystem::exists(spec.sample_file))
       deck.fail("sample/file", "no such file (" + spec.sample_file +
                                  "): expected a sample file (.json) or a prepare deck (.prm), relative to the deck");
+    if (!std::filesystem::is_regular_file(spec.sample_file))
+      deck.fail("sample/file", "not a regular file (a directory, device or pipe): expected a sample file (.json) "
+                               "or a prepare deck (.prm)");
   }
   dem::parse_lattice(deck.text("sample/lattice"), spec.lattice);
   spec.ball_radius = deck.real("sample/ball radius");
   spec.diameter = deck.real("sample/diameter");
   spec.height = deck.real("sample/height");
+  if (!spec.from_file)
+  {
+    const double sites = dem::lattice_cylinder_sites(spec.lattice, spec.ball_radius, spec.diameter, spec.height);
+    check_memory(sites * sizeof(dem::Vec3) + dem::estimated_memory_bytes(sites, 3),
+                 "a lattice of " + format_number(sites) + " sites", deck.path(), "sample/ball radius",
+                 deck.text("sample/ball radius"), "expected a larger ball radius or a smaller sample");
+  }
   spec.balls = parse_ball_properties(deck);
   spec.law = LawSpec::parse(deck);
   spec.bonds = BondSpec::parse(deck);

@@ -1,5 +1,7 @@
 #include "verify/report/report.h"
 
+#include "verify/io/output.h"
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -142,7 +144,7 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
       any_note = true;
       o << "- **" << r.check->id << "**: " << n << "\n";
     }
-  o << "\n## Provenance\n\n```json\n" << provenance.dump(2) << "\n```\n";
+  o << "\n## Provenance\n\n```json\n" << json_text(provenance, 2) << "\n```\n";
   return o.str();
 }
 } // namespace verify

@@ -246,7 +246,7 @@ std::string report_html(const std::vector<CheckRecord> &records, const nlohmann:
       << escaped(tolerance_class_limit(t)) << " " << escaped(tolerance_class_rule(t)) << " "
       << escaped(tolerance_class_reasoning(t)) << "</dd>\n";
   o << "</dl>\n<h2>Checks</h2>\n"
-    << body.str() << "<h2>Provenance</h2>\n<pre>" << escaped(provenance.dump(2)) << "</pre>\n<script>"
+    << body.str() << "<h2>Provenance</h2>\n<pre>" << escaped(json_text(provenance, 2)) << "</pre>\n<script>"
     << figure_check_script << "</script>\n</body>\n</html>\n";
   return o.str();
 }
@@ -255,7 +255,7 @@ void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json
                    const std::string &out_dir)
 {
   make_directories(out_dir);
-  write_atomically(out_dir + "/report.json", report_json(records, provenance).dump(2) + "\n");
+  write_atomically(out_dir + "/report.json", json_text(report_json(records, provenance), 2) + "\n");
   write_atomically(out_dir + "/report.md", report_markdown(records, provenance));
   std::vector<Figure> figures;
   for (const CheckRecord &r : records)

@@ -1,5 +1,6 @@
 #include "verify/run/dem_driver.h"
 
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 #include "verify/io/paraview.h"
 #include "verify/io/sample_file.h"
@@ -108,8 +109,10 @@ public:
   void after_integration(dem::Simulation &sim) override
   {
     protocol_.after_integration(sim);
-    if (due_)
-      protocol_.record(sim);
+    if (!due_)
+      return;
+    protocol_.record(sim);
+    sim.check_energy_growth(runaway_energy_factor);
   }
 
   bool last() const { return last_; }
@@ -136,6 +139,22 @@ private:
 };
 
 std::string deck_hash(const Deck &deck) { return fnv1a_hex(deck.resolved()); }
+
+/// Refuses a run whose steps cannot be counted in a lifetime (see the header note).
+void check_reachable(const dem::Simulation &sim, const DemProtocol &protocol)
+{
+  const double steps = dem::least_steps(sim.particles(), sim.settings(), protocol.time_left(sim));
+  if (!(steps > max_run_steps))
+    return;
+  // A generous speed for the estimate: 1e7 particle-steps per second.
+  const double years = std::max(1.0, double(sim.particles().size())) * steps / 1e7 / 3.15576e7;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the run would need at least %.3g steps (about %.3g years at 1e7 particle-steps/s): expected a run "
+                "of at most %.0e steps",
+                steps, years, max_run_steps);
+  protocol.refuse_duration(text);
+}
 
 void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const RunFiles &files,
                       const Cadence &cadence, const std::string &dir, const std::string &hash)
@@ -173,7 +192,7 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
                               {"series", std::move(series)}};
   // The driver's state is written last: a checkpoint whose state file names
   // another step than its sample file is refused on resume.
-  write_atomically(checkpoint_state_file(dir), doc.dump() + "\n");
+  write_atomically(checkpoint_state_file(dir), json_text(doc) + "\n");
 }
 
 nlohmann::json read_checkpoint(const std::string &dir)
@@ -182,22 +201,16 @@ nlohmann::json read_checkpoint(const std::string &dir)
   if (!std::filesystem::exists(path))
     throw DeckError(dir + ": no checkpoint to resume from (expected " + path +
                     ", written when a run is interrupted or at its checkpoint interval)");
-  try
-  {
-    nlohmann::json doc = nlohmann::json::parse(read_file(path));
-    if (doc.value("format", "") != "demvv-checkpoint" || doc.value("format_version", 0) != 1)
-      throw DeckError(path + ": not a demvv checkpoint of format version 1");
-    return doc;
-  }
-  catch (const nlohmann::json::exception &e)
-  {
-    throw DeckError(path + ": unreadable checkpoint: " + e.what());
-  }
+  nlohmann::json doc = parse_json_input(read_input(path, "checkpoint", max_table_bytes), path, "demvv checkpoint");
+  if (!doc.is_object() || doc.value("format", nlohmann::json()) != "demvv-checkpoint" ||
+      doc.value("format_version", nlohmann::json()) != 1)
+    throw DeckError(path + ": not a demvv checkpoint of format version 1");
+  return doc;
 }
 
-/// Continues the simulation, the series and the files from the checkpoint.
-void resume_from_checkpoint(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, Cadence &cadence,
-                            const std::string &dir)
+/// The checkpoint's state into the simulation, the series and the files.
+void resume_from_checkpoint_state(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, Cadence &cadence,
+                                  const std::string &dir)
 {
   const nlohmann::json doc = read_checkpoint(dir);
   SampleFile state = read_sample(checkpoint_sample_file(dir));
@@ -225,6 +238,22 @@ void resume_from_checkpoint(dem::Simulation &sim, DemProtocol &protocol, RunFile
     }
     series[k].series->restore_rows(std::move(rows));
     series[k].series->resume_stream(dir + "/" + series[k].file, saved[k].at("bytes").get<std::uintmax_t>());
+  }
+}
+
+/// Continues the simulation, the series and the files from the checkpoint;
+/// a checkpoint edited or damaged beyond its format is the one-line error.
+void resume_from_checkpoint(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, Cadence &cadence,
+                            const std::string &dir)
+{
+  try
+  {
+    resume_from_checkpoint_state(sim, protocol, files, cadence, dir);
+  }
+  catch (const nlohmann::json::exception &e)
+  {
+    throw DeckError(checkpoint_state_file(dir) + ": a field is missing or of the wrong type (" + e.what() +
+                    "): expected a checkpoint written by demvv");
   }
 }
 } // namespace
@@ -314,6 +343,17 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   Cadence cadence(protocol, files, output);
   RunDirectory *dir = files.directory();
   const std::string hash = dir ? dir->deck_hash() : "";
+  if (!options.resume)
+    try
+    {
+      check_reachable(sim, protocol);
+    }
+    catch (const DeckError &e)
+    {
+      if (dir)
+        dir->write_summary({{"status", {{"state", "refused"}, {"message", e.what()}}}});
+      throw;
+    }
   if (dir && options.resume)
     resume_from_checkpoint(sim, protocol, files, cadence, options.out_dir);
   else if (dir)
@@ -359,9 +399,11 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
       if (progress.due())
       {
         const double rate = double(sim.particles().size()) * double(sim.steps() - steps_at_start) / progress.elapsed();
-        char speed[48];
-        std::snprintf(speed, sizeof speed, "  %.3g particle-steps/s", rate);
-        progress.update(std::clamp(protocol.fraction_done(sim), 0.0, 1.0), protocol.state_text(sim) + speed);
+        const double done = std::clamp(protocol.fraction_done(sim), 0.0, 1.0);
+        char speed[96];
+        std::snprintf(speed, sizeof speed, "  step %ld of ~%.3g  %.3g particle-steps/s", sim.steps(),
+                      done > 0 ? double(sim.steps()) / done : double(sim.steps()), rate);
+        progress.update(done, protocol.state_text(sim) + speed);
       }
     }
   }

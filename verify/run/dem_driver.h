@@ -14,8 +14,16 @@
 //   - the bond-break log;
 //   - the progress line on a terminal (percent, the protocol's state,
 //     particle-steps per second, time left), nothing otherwise;
+//   - a run that cannot end is refused before its first step: when the
+//     protocol's time left needs more than max_run_steps steps even at the
+//     largest step the simulation could take (dem::least_steps), the deck
+//     key that sets the duration is named with the estimate (DeckError,
+//     exit code 2; summary.json says "refused");
 //   - fault capture: a NumericalFault ends the run with every output kept
 //     and the diagnostic in summary.json (exit code 3);
+//   - runaway energy: at every row the kinetic plus strain energy is held
+//     to runaway_energy_factor times the energy supplied
+//     (dem::Simulation::check_energy_growth), a fault like any other;
 //   - interruption: SIGINT or SIGTERM end the run at the end of the current
 //     step; every output is flushed, summary.json says "interrupted" and a
 //     checkpoint is written (exit code 130 or 143);
@@ -43,6 +51,23 @@
 
 namespace verify
 {
+/// Steps a run may need at most: 1e12 steps take about a day even for a
+/// single ball and centuries for a sample of thousands (the engine does a
+/// few million particle-steps per second per core: 4.8e6 measured on one
+/// core for a 100000-ball sc bench, 2.2e6 for fcc).
+constexpr double max_run_steps = 1e12;
+
+/// Kinetic plus strain energy above this multiple of the energy supplied
+/// stops a run as a numerical fault (dem::Simulation::check_energy_growth).
+/// A stable run holds them near the supply (dissipation only removes
+/// energy; the strain energy of a contact resolved by the default step
+/// overshoots the scheme's invariant by less than a factor 3), so a factor
+/// 10 stops no valid run, while an unstable step multiplies the energy
+/// every step and passes it within a few dozen steps.  A fixed step within
+/// 5 % of the true stability limit (omega dt > 1.9) is stopped too: it is
+/// stable, but its contact forces are off by a factor of ten.
+constexpr double runaway_energy_factor = 10;
+
 /// The outputs section every DEM kind shares.
 struct DemOutputSpec
 {
@@ -114,6 +139,11 @@ public:
   virtual double fraction_done(const dem::Simulation &sim) const = 0;
   /// True at the force time of the last step.
   virtual bool finished(const dem::Simulation &sim) const = 0;
+  /// Simulated time until finished() [s] (the loading's own schedule).
+  virtual double time_left(const dem::Simulation &sim) const = 0;
+  /// Throws the one-line DeckError naming the deck key that sets how long
+  /// the test runs, with its value and `expected`.
+  [[noreturn]] virtual void refuse_duration(const std::string &expected) const = 0;
   /// A few words for the progress line ("strain 0.0123, stress 12.3 MPa").
   virtual std::string state_text(const dem::Simulation &sim) const = 0;
   /// Takes the row's measurements at the force time.

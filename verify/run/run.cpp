@@ -74,7 +74,7 @@ RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int t
 void RunDirectory::write_summary(nlohmann::json summary) const
 {
   summary["provenance"] = provenance_;
-  write_atomically(path("summary.json"), summary.dump(2) + "\n");
+  write_atomically(path("summary.json"), json_text(summary, 2) + "\n");
 }
 
 RunFiles::RunFiles(const RunOptions &options, const DeckRecord &deck, int threads, long long seed,

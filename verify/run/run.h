@@ -5,7 +5,9 @@
 // atomically at the end or at a fault) and the series files, which grow a
 // complete row at a time.  A run stopped by a numerical fault keeps all of
 // them valid and records the diagnostic (step, time, particle) in
-// summary.json; the command then exits with code 3.
+// summary.json; the command then exits with code 3.  A DEM run refused
+// before its first step (it could never end, dem_driver.h) leaves
+// summary.json with status "refused" and the one-line error (exit code 2).
 #pragma once
 
 #include "verify/decks/deck.h"
