@@ -1,8 +1,9 @@
 #!/bin/sh
 # Busy-machine benchmark: demvv bench on 1 and on all cores, idle and beside
-# one competing CPU-bound process (a shell loop), with
-# OpenMP's waits passive (demvv's default) and active (libgomp's default);
-# then the cost of each contact law on one thread.
+# one competing CPU-bound process (a shell loop), with OpenMP's waits
+# as demvv sets them (passive), and active (libgomp's default);
+# then the thread count demvv picks by default; then the cost
+# of each contact law on one thread.
 #
 # usage: bench/busy_machine.sh [DEMVV] [STEPS]     (from the repository root)
 # Prints one line per configuration: particle-steps/s, best of 3.
@@ -10,17 +11,21 @@ set -eu
 demvv=${1:-build/demvv}
 steps=${2:-1000}
 cores=$(nproc)
-run() { # LABEL THREADS POLICY
-  rate=$(env OMP_WAIT_POLICY="$3" "$demvv" bench --steps "$steps" --repeat 3 --threads "$2" 2>&1 |
-         sed -n 's/.*particle-steps\/s \([0-9.e+]*\),.*/\1/p')
-  printf '%-34s %2s threads  %-7s %s particle-steps/s\n' "$1" "$2" "$3" "$rate"
+run() { # LABEL THREADS|default WAITS (demvv or active)
+  if [ "$2" = default ]; then flag=""; else flag="--threads $2"; fi
+  if [ "$3" = demvv ]; then waits=""; else waits="OMP_WAIT_POLICY=$3"; fi
+  line=$(env $waits "$demvv" bench --steps "$steps" --repeat 3 $flag 2>&1 | tail -1)
+  rate=$(echo "$line" | sed -n 's/.*particle-steps\/s \([0-9.e+]*\),.*/\1/p')
+  used=$(echo "$line" | sed -n 's/.*threads \([0-9]*\) .*/\1/p')
+  printf '%-34s %-8s %2s threads  %-7s %s particle-steps/s\n' "$1" "$2" "$used" "$3" "$rate"
 }
 table() { # LABEL
-  for t in 1 $((cores - 1)) "$cores"; do
+  for t in $(printf '%s\n' 1 $((cores - 1)) "$cores" | sort -nu); do
     [ "$t" -ge 1 ] || continue
-    run "$1" "$t" passive
+    run "$1" "$t" demvv
     run "$1" "$t" active
   done
+  run "$1" default demvv
 }
 table "idle"
 sh -c 'while :; do :; done' &
@@ -33,5 +38,5 @@ trap - EXIT
 for law in linear burgers modified_burgers; do
   rate=$("$demvv" bench --steps "$steps" --repeat 3 --threads 1 --law "$law" 2>&1 |
          sed -n 's/.*particle-steps\/s \([0-9.e+]*\),.*/\1/p')
-  printf '%-34s %2s threads  %-7s %s particle-steps/s\n' "idle, law $law" 1 passive "$rate"
+  printf '%-34s %-8s %2s threads  %-7s %s particle-steps/s\n' "idle, law $law" 1 1 demvv "$rate"
 done

@@ -10,9 +10,12 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <omp.h>
+#include <thread>
 
 namespace
 {
@@ -184,4 +187,26 @@ TEST_CASE("a resume is refused for another deck or a directory without a checkpo
   verify::Deck other = small_uniaxial("linear");
   other.set("loading/final strain", "0.005");
   CHECK_THROWS_WITH(verify::check_resumable(dir.string(), other), Catch::Contains("another deck"));
+}
+
+TEST_CASE("the default thread count leaves out a core another task is running on", "[run][threads]")
+{
+  const int cores = omp_get_num_procs();
+  if (cores < 2)
+    return; // one core: one thread whatever the load
+  std::atomic<bool> stop{false};
+  std::thread busy([&] {
+    while (!stop.load(std::memory_order_relaxed))
+      ;
+  });
+  int seen = cores;
+  for (int k = 0; k < 50 && seen == cores; ++k) // until the scheduler has started it
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    seen = verify::idle_cores();
+  }
+  stop = true;
+  busy.join();
+  CHECK(seen >= 1);
+  CHECK(seen <= cores - 1);
 }

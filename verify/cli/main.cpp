@@ -42,7 +42,7 @@ int main(int argc, char **argv)
   run->add_option("DECK", deck_path, "Deck file (.prm or .json)")->required();
   run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>)");
   run->add_option("--set", overrides, "Override a deck entry: SECTION/KEY=VALUE (repeatable)");
-  run->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+  run->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS, else the cores no other process is busy on)")
     ->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "No progress line (it is shown only when standard output is a terminal)");
   run->add_option("--resume", resume_dir,

@@ -5,8 +5,11 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 namespace verify
@@ -125,10 +128,24 @@ void RunFiles::resume(const nlohmann::json &state)
     paraview_->restore(state.at("paraview"));
 }
 
+int idle_cores()
+{
+  const int cores = omp_get_num_procs();
+  std::ifstream in("/proc/loadavg");
+  double minute = 0, five = 0, fifteen = 0;
+  std::string tasks;
+  if (!(in >> minute >> five >> fifteen >> tasks))
+    return cores;
+  const int runnable = std::atoi(tasks.c_str()); // "runnable/total", this process included
+  return std::clamp(cores - (runnable - 1), 1, cores);
+}
+
 int apply_threads(const RunOptions &options)
 {
   if (options.threads > 0)
     omp_set_num_threads(options.threads);
+  else if (!std::getenv("OMP_NUM_THREADS"))
+    omp_set_num_threads(idle_cores());
   return omp_get_max_threads();
 }
 } // namespace verify
