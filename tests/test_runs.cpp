@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <omp.h>
@@ -209,4 +211,19 @@ TEST_CASE("the default thread count leaves out a core another task is running on
   busy.join();
   CHECK(seen >= 1);
   CHECK(seen <= cores - 1);
+}
+
+TEST_CASE("a series on a full disk says so with the system's reason", "[run][output]")
+{
+  // /dev/full takes no byte: every write fails with ENOSPC.
+  try
+  {
+    verify::CsvSeries full("/dev/full", "a comment", {"time_s", "x_m"});
+    FAIL("the header was written to /dev/full");
+  }
+  catch (const verify::OutputError &e)
+  {
+    CHECK(std::string(e.what()).find("/dev/full") != std::string::npos);
+    CHECK(std::string(e.what()).find(std::strerror(ENOSPC)) != std::string::npos);
+  }
 }

@@ -31,6 +31,23 @@ void tell(const std::string &deck_path, const std::string &out_dir, const RunSta
               << out_dir << "\n";
 }
 
+/// After an output could not be written, summary.json says so instead of
+/// "running" (if the disk still takes that much; otherwise stderr says it).
+void mark_output_failure(const std::string &run_dir, const std::string &why)
+{
+  const std::string path = run_dir + "/summary.json";
+  try
+  {
+    nlohmann::json summary = nlohmann::json::parse(read_file(path));
+    summary["status"] = {{"state", "output failed"}, {"message", why}};
+    write_atomically(path, json_text(summary, 2) + "\n");
+  }
+  catch (const std::exception &)
+  {
+    std::cerr << "demvv: " << path << " could not be marked as failed either: it may still say \"running\"\n";
+  }
+}
+
 /// Draws a run's figures; one line for what could not be drawn.
 void draw_run_figures(const std::string &run_dir, bool list_drawn)
 {
@@ -58,7 +75,16 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   const DeckKind *kind = find_deck_kind(deck.kind());
   if (o.resume)
     check_resumable(o.out_dir, deck);
-  const RunStatus status = kind->run(deck, o);
+  RunStatus status;
+  try
+  {
+    status = kind->run(deck, o);
+  }
+  catch (const OutputError &e)
+  {
+    mark_output_failure(o.out_dir, e.what());
+    throw;
+  }
   if (status.writes_run_directory)
     draw_run_figures(o.out_dir, false);
   tell(deck_path, o.out_dir, status);

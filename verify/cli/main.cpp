@@ -10,11 +10,14 @@
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
 // usage, including input that needs more memory than the machine has (most
 // refused before allocating, any other allocation failure caught here);
-// 3 the simulation stopped on a numerical fault; 130 / 143 the run was
-// interrupted by SIGINT / SIGTERM (outputs kept, checkpoint written).
+// 3 the simulation stopped on a numerical fault; 4 an output could not be
+// written (a full disk: file and system reason named, rows before it whole);
+// 130 / 143 the run was interrupted by SIGINT / SIGTERM (outputs kept,
+// checkpoint written).
 #include "verify/cli/bench.h"
 #include "verify/cli/commands.h"
 #include "verify/decks/deck.h"
+#include "verify/io/output.h"
 
 #include <CLI/CLI.hpp>
 
@@ -139,6 +142,11 @@ int main(int argc, char **argv)
   {
     std::cerr << "demvv: " << e.what() << "\n";
     return 2;
+  }
+  catch (const verify::OutputError &e)
+  {
+    std::cerr << "demvv: " << e.what() << "; every row and file written before is complete\n";
+    return 4;
   }
   catch (const std::runtime_error &e)
   {

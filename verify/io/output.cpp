@@ -2,6 +2,7 @@
 
 #include "build_info.h"
 
+#include <fcntl.h>
 #include <omp.h>
 #include <unistd.h>
 
@@ -23,17 +24,48 @@ void make_directories(const std::string &path)
     throw std::runtime_error(path + ": cannot create the output directory: " + ec.message());
 }
 
+namespace
+{
+/// Writes all of `data` to a file descriptor (write(2) may take part of it);
+/// the errno of the failing call, 0 on success.
+int write_all(int fd, const char *data, std::size_t size)
+{
+  while (size > 0)
+  {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+      return n < 0 ? errno : ENOSPC;
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return 0;
+}
+
+[[noreturn]] void output_failed(const std::string &path, const std::string &what, int error)
+{
+  throw OutputError(path + ": " + what + ": " + std::strerror(error));
+}
+} // namespace
+
 void write_atomically(const std::string &path, const std::string &content)
 {
   const std::string tmp = path + ".tmp";
-  std::FILE *f = std::fopen(tmp.c_str(), "wb");
-  if (!f)
-    throw std::runtime_error(tmp + ": cannot write: " + std::strerror(errno));
-  const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size() &&
-                  std::fflush(f) == 0 && fsync(fileno(f)) == 0;
-  std::fclose(f);
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0)
+    output_failed(tmp, "cannot write", errno);
+  int error = write_all(fd, content.data(), content.size());
+  if (!error && fsync(fd) != 0)
+    error = errno;
+  ::close(fd);
+  if (!error && std::rename(tmp.c_str(), path.c_str()) != 0)
+    error = errno;
+  if (error)
+  {
+    std::remove(tmp.c_str());
+    output_failed(path, "cannot write", error);
+  }
 }
 
 std::string read_file(const std::string &path)
@@ -57,13 +89,13 @@ CsvSeries::CsvSeries(const std::string &path, const std::string &comment,
 {
   file_ = std::fopen(path.c_str(), "wb");
   if (!file_)
-    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+    output_failed(path, "cannot write", errno);
   std::string head = "# " + comment + "\n";
   for (std::size_t k = 0; k < columns.size(); ++k)
     head += (k ? "," : "") + columns[k];
   head += "\n";
-  std::fwrite(head.data(), 1, head.size(), file_);
-  std::fflush(file_);
+  if (const int error = write_all(fileno(file_), head.data(), head.size()))
+    output_failed(path, "cannot write the header", error);
 }
 
 CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_t keep)
@@ -75,7 +107,7 @@ CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_
     throw std::runtime_error(path + ": cannot continue the file of the checkpoint: " + ec.message());
   file_ = std::fopen(path.c_str(), "ab");
   if (!file_)
-    throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+    output_failed(path, "cannot write", errno);
 }
 
 CsvSeries::~CsvSeries()
@@ -97,10 +129,18 @@ void CsvSeries::write(const std::vector<double> &row)
     buffer_ += cell;
   }
   buffer_ += "\n";
-  // One write(2) per row: a row is either wholly in the file or not at all.
-  std::fflush(file_);
-  if (::write(fileno(file_), buffer_.data(), buffer_.size()) != static_cast<ssize_t>(buffer_.size()))
-    throw std::runtime_error(path_ + ": cannot append a row: " + std::strerror(errno));
+  // A row is either wholly in the file or not at all: a part the disk took
+  // is cut off again.
+  const int fd = fileno(file_);
+  const off_t end = ::lseek(fd, 0, SEEK_END);
+  if (const int error = write_all(fd, buffer_.data(), buffer_.size()))
+  {
+    if (end >= 0 && ::ftruncate(fd, end) != 0)
+      output_failed(path_, "cannot append a row (" + std::string(std::strerror(error)) +
+                             ") nor cut the part written; its last row is incomplete",
+                    errno);
+    output_failed(path_, "cannot append a row (the file ends at the previous row)", error);
+  }
 }
 
 Progress::Progress(std::string label, bool wanted, double done_at_start)

@@ -15,12 +15,22 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace verify
 {
-/// Writes `content` to `path` via a temporary file and rename(2).
+/// An output could not be written (a full disk, a quota, an I/O error): the
+/// message names the file and the system's reason; demvv exits with code 4.
+class OutputError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Writes `content` to `path` via a temporary file and rename(2); on failure
+/// the old file stays as it was and OutputError says why.
 void write_atomically(const std::string &path, const std::string &content);
 
 /// Creates a directory and its parents; throws DeckError-free std::runtime_error on failure.
@@ -38,7 +48,9 @@ public:
   CsvSeries(const CsvSeries &) = delete;
   CsvSeries &operator=(const CsvSeries &) = delete;
 
-  /// Appends one row (as many values as columns), flushed.
+  /// Appends one row (as many values as columns), flushed; a row the disk
+  /// cannot take is cut off whole (the file ends at the previous row) and
+  /// OutputError says why.
   void write(const std::vector<double> &row);
   std::size_t columns() const { return columns_; }
 
