@@ -42,7 +42,7 @@ TEST_CASE("a figure script reads named columns with their display scale and a ri
   CHECK(contains(s, "title 'it''s broken'")); // a quote inside a title is doubled
 }
 
-TEST_CASE("gnuplot draws a figure held in memory as SVG; a figure without data is reported, not fatal", "[plot]")
+TEST_CASE("gnuplot draws a figure held in memory as SVG and reports a figure without data, not failing", "[plot]")
 {
   REQUIRE(verify::gnuplot_available()); // README and CI install gnuplot-nox
   const fs::path dir = fs::temp_directory_path() / "demvv_test_plot";
@@ -91,7 +91,7 @@ TEST_CASE("the Richardson curve of a GCI figure passes through the three levels 
   CHECK(f.curves[3].y.front() == Approx(phi[0] * (1 + g.gci_fine)).epsilon(1e-12));
 }
 
-TEST_CASE("a uniaxial run directory gets the Fig. 6.1 pair and its other figures; plot refuses a non-run", "[plot]")
+TEST_CASE("a uniaxial run directory gets the Fig. 6.1 pair and its other figures, plot refuses a non-run", "[plot]")
 {
   const fs::path dir = fs::temp_directory_path() / "demvv_test_plot_run";
   fs::remove_all(dir);

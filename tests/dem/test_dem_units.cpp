@@ -54,7 +54,7 @@ TEST_CASE("linear law closed forms are consistent", "[dem][law]")
   CHECK(dem::LinearLaw::reduced_mass(2.0, 2.0) == 1.0);
 }
 
-TEST_CASE("contact history survives neighbour rebuilds; bonded pairs stay listed", "[dem][contacts]")
+TEST_CASE("contact history survives neighbour rebuilds, bonded pairs stay listed", "[dem][contacts]")
 {
   auto sim = two_balls(1e-3, 2e-3, 1e6, 1e5, 0.5);
   sim.refresh_contacts();
@@ -105,7 +105,7 @@ TEST_CASE("a bond break is logged with the trial forces that broke it", "[dem][b
   CHECK(sim.contacts().find(0, 1)->state.normal_force == 0); // the applied force after the break
 }
 
-TEST_CASE("Gaussian bond strengths are seeded and truncated and counted; removal is exact", "[dem][bonds]")
+TEST_CASE("Gaussian bond strengths are seeded and truncated and counted, removal is exact", "[dem][bonds]")
 {
   dem::ParticleStore p;
   for (const Vec3 &x : dem::lattice_box(dem::Lattice::simple_cubic, 1e-3, 6, 6, 6))

@@ -69,7 +69,7 @@ TEST_CASE("a Burger's history maps to its LawState slot and back, all zero at re
   CHECK(dem::find_law("linear")->state_fields.empty());
 }
 
-TEST_CASE("table rebuilds carry each contact's law state; a new pair starts at rest", "[dem][law_state][contacts]")
+TEST_CASE("table rebuilds carry each contact's law state, a new pair starts at rest", "[dem][law_state][contacts]")
 {
   dem::ParticleStore p;
   for (int k = 0; k < 4; ++k)
