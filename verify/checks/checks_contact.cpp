@@ -17,22 +17,35 @@ namespace
 {
 double first_row_value(const Series &s, const std::string &column) { return s.column(column).front(); }
 
-/// The measured force of an impact beside the closed-form half sine
-/// F_max sin(omega (t - t_0)), t_0 putting its centre on the measured pulse's.
-Figure impact_figure(const std::string &label, const std::vector<double> &t, const std::vector<double> &force,
-                     double dt, double kn, double reduced_mass, double v_in)
+/// The steps of an impact: the first and last times with a positive force and
+/// the largest force.
+struct Pulse
 {
-  double first = std::nan(""), last = std::nan("");
+  double first = std::nan(""), last = std::nan(""), peak_force = 0;
+};
+
+Pulse pulse(const std::vector<double> &t, const std::vector<double> &force)
+{
+  Pulse p;
   for (std::size_t k = 0; k < t.size(); ++k)
     if (force[k] > 0)
     {
-      first = std::isnan(first) ? t[k] : first;
-      last = t[k];
+      p.first = std::isnan(p.first) ? t[k] : p.first;
+      p.last = t[k];
+      p.peak_force = std::max(p.peak_force, force[k]);
     }
+  return p;
+}
+
+/// The measured force of an impact beside the closed-form half sine
+/// F_max sin(omega (t - t_0)), t_0 putting its centre on the measured pulse's.
+Figure impact_figure(const std::string &label, const std::vector<double> &t, const std::vector<double> &force,
+                     const Pulse &measured, double dt, double kn, double reduced_mass, double v_in)
+{
   const double tc = dem::LinearLaw::collision_time(kn, reduced_mass);
   const double omega = dem::LinearLaw::natural_frequency(kn, reduced_mass);
   const double f_max = dem::LinearLaw::peak_force(kn, reduced_mass, v_in);
-  const double t0 = 0.5 * (first + last + dt) - 0.5 * tc;
+  const double t0 = 0.5 * (measured.first + measured.last + dt) - 0.5 * tc;
   std::vector<double> closed;
   for (double time : t)
     closed.push_back(time > t0 && time < t0 + tc ? f_max * std::sin(omega * (time - t0)) : 0.0);
@@ -49,25 +62,18 @@ void impact_metrics(CheckOutcome &out, const std::string &label, const std::vect
                     const std::vector<double> &force, double dt, double kn, double reduced_mass, double v_in,
                     double v_out)
 {
-  double first = std::nan(""), last = std::nan(""), peak_force = 0;
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (force[k] > 0)
-    {
-      if (std::isnan(first))
-        first = t[k];
-      last = t[k];
-      peak_force = std::max(peak_force, force[k]);
-    }
+  const Pulse measured = pulse(t, force);
   const double omega_dt = dem::LinearLaw::natural_frequency(kn, reduced_mass) * dt;
   const double tc = dem::LinearLaw::collision_time(kn, reduced_mass);
   // Onset and end each fall inside one step: the force is positive on the
   // steps in (t_on, t_off), so (last - first + dt) is within one step of t_c.
-  out.metrics.push_back(relative_error(label + ": contact duration, relative error", last - first + dt, tc, dt / tc,
+  out.metrics.push_back(relative_error(label + ": contact duration, relative error",
+                                       measured.last - measured.first + dt, tc, dt / tc,
                                        ToleranceClass::C, "onset and end each resolved to one step (dt / t_c)"));
   // The centred-difference solution of a linear spring has amplitude and
   // phase errors O((omega dt)^2) (both below (omega dt)^2 / 2), and
   // sampling the sine at steps misses its top by at most (omega dt)^2 / 8.
-  out.metrics.push_back(relative_error(label + ": peak normal force, relative error", peak_force,
+  out.metrics.push_back(relative_error(label + ": peak normal force, relative error", measured.peak_force,
                                        dem::LinearLaw::peak_force(kn, reduced_mass, v_in), omega_dt * omega_dt,
                                        ToleranceClass::B, "(omega dt)^2 bounds the amplitude and sampling errors"));
   // Energy is conserved up to the spring energy left when the force
@@ -75,7 +81,7 @@ void impact_metrics(CheckOutcome &out, const std::string &label, const std::vect
   out.metrics.push_back(relative_error(label + ": coefficient of restitution, relative error", v_out / v_in,
                                        dem::LinearLaw::restitution(), omega_dt * omega_dt, ToleranceClass::B,
                                        "spring energy at the switch-off step, (omega dt)^2"));
-  out.figures.push_back(impact_figure(label, t, force, dt, kn, reduced_mass, v_in));
+  out.figures.push_back(impact_figure(label, t, force, measured, dt, kn, reduced_mass, v_in));
 }
 } // namespace
 

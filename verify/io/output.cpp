@@ -27,20 +27,27 @@ void make_directories(const std::string &path)
 namespace
 {
 /// Writes all of `data` to a file descriptor (write(2) may take part of it);
-/// the errno of the failing call, 0 on success.
-int write_all(int fd, const char *data, std::size_t size)
+/// the errno of the failing call, 0 on success; `written` counts the bytes
+/// the file took.
+int write_all(int fd, const char *data, std::size_t size, std::size_t &written)
 {
-  while (size > 0)
+  written = 0;
+  while (written < size)
   {
-    const ssize_t n = ::write(fd, data, size);
+    const ssize_t n = ::write(fd, data + written, size - written);
     if (n < 0 && errno == EINTR)
       continue;
     if (n <= 0)
       return n < 0 ? errno : ENOSPC;
-    data += n;
-    size -= static_cast<std::size_t>(n);
+    written += static_cast<std::size_t>(n);
   }
   return 0;
+}
+
+int write_all(int fd, const char *data, std::size_t size)
+{
+  std::size_t written = 0;
+  return write_all(fd, data, size, written);
 }
 
 [[noreturn]] void output_failed(const std::string &path, const std::string &what, int error)
@@ -132,10 +139,11 @@ void CsvSeries::write(const std::vector<double> &row)
   // A row is either wholly in the file or not at all: a part the disk took
   // is cut off again.
   const int fd = fileno(file_);
-  const off_t end = ::lseek(fd, 0, SEEK_END);
-  if (const int error = write_all(fd, buffer_.data(), buffer_.size()))
+  std::size_t written = 0;
+  if (const int error = write_all(fd, buffer_.data(), buffer_.size(), written))
   {
-    if (end >= 0 && ::ftruncate(fd, end) != 0)
+    const off_t end = ::lseek(fd, 0, SEEK_END) - static_cast<off_t>(written);
+    if (::ftruncate(fd, end) != 0)
       output_failed(path_, "cannot append a row (" + std::string(std::strerror(error)) +
                              ") nor cut the part written; its last row is incomplete",
                     errno);

@@ -74,11 +74,10 @@ std::string number(double v)
 /// gnuplot's `using` item for column `c` (a number or a name) times `scale`.
 std::string using_item(const std::string &c, double scale)
 {
-  if (scale == 1 && c.find_first_not_of("0123456789") == std::string::npos)
+  const bool numbered = c.find_first_not_of("0123456789") == std::string::npos;
+  if (scale == 1 && numbered)
     return c;
-  const std::string value =
-    c.find_first_not_of("0123456789") == std::string::npos ? "$" + c : "column(" + quoted(c) + ")";
-  return "(" + value + (scale == 1 ? "" : "*" + number(scale)) + ")";
+  return "(" + (numbered ? "$" + c : "column(" + quoted(c) + ")") + (scale == 1 ? "" : "*" + number(scale)) + ")";
 }
 
 std::string style_clause(CurveStyle s, int colour)

@@ -45,9 +45,9 @@ std::string report_number(double v);
 
 /// The figures of one check in report.html (names start with the check's id).
 std::vector<Figure> check_figures(const CheckRecord &record);
-/// report.html, given each figure drawn (by name).
-std::string report_html(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
-                        const std::map<std::string, DrawnFigure> &drawn);
+/// report.html, given each record's figures (check_figures) and each figure drawn (by name).
+std::string report_html(const std::vector<CheckRecord> &records, const std::vector<std::vector<Figure>> &figures,
+                        const nlohmann::json &provenance, const std::map<std::string, DrawnFigure> &drawn);
 /// Writes report.json, report.md, figures/ (scripts, data, SVG) and report.html into out_dir.
 void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
                    const std::string &out_dir);

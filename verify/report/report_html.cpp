@@ -15,7 +15,7 @@ namespace verify
 {
 namespace
 {
-std::string escaped(std::string_view text)
+std::string html_escaped(std::string_view text)
 {
   std::string out;
   for (char c : text)
@@ -168,39 +168,40 @@ std::vector<Figure> check_figures(const CheckRecord &r)
   return out;
 }
 
-std::string report_html(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
-                        const std::map<std::string, DrawnFigure> &drawn)
+std::string report_html(const std::vector<CheckRecord> &records, const std::vector<std::vector<Figure>> &figures,
+                        const nlohmann::json &provenance, const std::map<std::string, DrawnFigure> &drawn)
 {
   std::size_t failed = 0, missing = 0;
   for (const CheckRecord &r : records)
     failed += r.pass() ? 0 : 1;
   std::ostringstream body;
-  for (const CheckRecord &r : records)
+  for (std::size_t n = 0; n < records.size(); ++n)
   {
+    const CheckRecord &r = records[n];
     const Check &c = *r.check;
-    body << "<section class=\"check\" id=\"" << escaped(c.id) << "\">\n<h3>" << escaped(c.id) << ": "
-         << escaped(c.title) << " — " << verdict(r.pass()) << "</h3>\n<dl class=\"facts\">\n"
-         << "<dt>Requirement</dt><dd>" << escaped(c.requirement) << "</dd>\n"
-         << "<dt>Reference</dt><dd>" << escaped(c.reference) << "</dd>\n"
-         << "<dt>Category</dt><dd>" << escaped(category_name(c.category)) << "</dd>\n"
-         << "<dt>Tolerance classes</dt><dd>" << escaped(tolerance_class_list(c.tolerance_classes)) << "</dd>\n"
+    body << "<section class=\"check\" id=\"" << html_escaped(c.id) << "\">\n<h3>" << html_escaped(c.id) << ": "
+         << html_escaped(c.title) << " — " << verdict(r.pass()) << "</h3>\n<dl class=\"facts\">\n"
+         << "<dt>Requirement</dt><dd>" << html_escaped(c.requirement) << "</dd>\n"
+         << "<dt>Reference</dt><dd>" << html_escaped(c.reference) << "</dd>\n"
+         << "<dt>Category</dt><dd>" << html_escaped(category_name(c.category)) << "</dd>\n"
+         << "<dt>Tolerance classes</dt><dd>" << html_escaped(tolerance_class_list(c.tolerance_classes)) << "</dd>\n"
          << "<dt>Run time</dt><dd>" << report_number(r.seconds) << " s</dd>\n</dl>\n";
     if (!r.error.empty())
-      body << "<p class=\"fail\">The check stopped: " << escaped(r.error) << "</p>\n";
-    for (const Figure &f : check_figures(r))
+      body << "<p class=\"fail\">The check stopped: " << html_escaped(r.error) << "</p>\n";
+    for (const Figure &f : figures[n])
     {
       const auto it = drawn.find(f.name);
       body << "<figure>\n";
       if (it != drawn.end() && it->second.drawn())
-        body << "<img class=\"figure\" alt=\"" << escaped(f.title) << "\" src=\"data:image/svg+xml;base64,"
+        body << "<img class=\"figure\" alt=\"" << html_escaped(f.title) << "\" src=\"data:image/svg+xml;base64,"
              << base64(read_file(it->second.svg)) << "\">\n";
       else
       {
         ++missing;
-        body << "<p class=\"missing\">Figure '" << escaped(f.name) << "' was not drawn"
-             << (it == drawn.end() ? std::string() : ": " + escaped(it->second.problem)) << ".</p>\n";
+        body << "<p class=\"missing\">Figure '" << html_escaped(f.name) << "' was not drawn"
+             << (it == drawn.end() ? std::string() : ": " + html_escaped(it->second.problem)) << ".</p>\n";
       }
-      body << "<figcaption>" << escaped(f.title) << (f.caption.empty() ? "" : ". ") << escaped(f.caption)
+      body << "<figcaption>" << html_escaped(f.title) << (f.caption.empty() ? "" : ". ") << html_escaped(f.caption)
            << "</figcaption>\n</figure>\n";
     }
     body << "<table>\n<tr><th>#</th><th>metric</th><th>class</th><th>value</th><th>tolerance</th><th>verdict</th>"
@@ -208,17 +209,17 @@ std::string report_html(const std::vector<CheckRecord> &records, const nlohmann:
     for (std::size_t k = 0; k < r.outcome.metrics.size(); ++k)
     {
       const Metric &m = r.outcome.metrics[k];
-      body << "<tr><td>" << k + 1 << "</td><td>" << escaped(m.name) << "</td><td>"
+      body << "<tr><td>" << k + 1 << "</td><td>" << html_escaped(m.name) << "</td><td>"
            << tolerance_class_letter(m.tolerance_class) << "</td><td>" << report_number(m.value) << "</td><td>"
            << (m.at_least ? "&ge; " : "&le; ") << report_number(m.tolerance) << "</td><td>" << verdict(m.pass) << "</td><td>"
-           << escaped(m.reason) << "</td></tr>\n";
+           << html_escaped(m.reason) << "</td></tr>\n";
     }
     body << "</table>\n";
     if (!r.outcome.notes.empty())
     {
       body << "<ul>\n";
       for (const std::string &n : r.outcome.notes)
-        body << "<li>" << escaped(n) << "</li>\n";
+        body << "<li>" << html_escaped(n) << "</li>\n";
       body << "</ul>\n";
     }
     body << "</section>\n";
@@ -233,20 +234,20 @@ std::string report_html(const std::vector<CheckRecord> &records, const nlohmann:
     << "<h2>Verdicts</h2>\n<table>\n<tr><th>id</th><th>check</th><th>category</th><th>classes</th><th>verdict</th>"
        "<th>run time [s]</th></tr>\n";
   for (const CheckRecord &r : records)
-    o << "<tr><td><a href=\"#" << escaped(r.check->id) << "\">" << escaped(r.check->id) << "</a></td><td>"
-      << escaped(r.check->title) << "</td><td>" << escaped(category_name(r.check->category)) << "</td><td>"
-      << escaped(tolerance_class_list(r.check->tolerance_classes)) << "</td><td>" << verdict(r.pass())
+    o << "<tr><td><a href=\"#" << html_escaped(r.check->id) << "\">" << html_escaped(r.check->id) << "</a></td><td>"
+      << html_escaped(r.check->title) << "</td><td>" << html_escaped(category_name(r.check->category)) << "</td><td>"
+      << html_escaped(tolerance_class_list(r.check->tolerance_classes)) << "</td><td>" << verdict(r.pass())
       << "</td><td>" << report_number(r.seconds) << "</td></tr>\n";
   o << "</table>\n<h2>Categories and tolerance classes</h2>\n<dl>\n";
   for (Category c : {Category::code_verification, Category::solution_verification, Category::calibration,
                      Category::validation})
-    o << "<dt><b>" << escaped(category_name(c)) << "</b></dt><dd>" << escaped(category_definition(c)) << "</dd>\n";
+    o << "<dt><b>" << html_escaped(category_name(c)) << "</b></dt><dd>" << html_escaped(category_definition(c)) << "</dd>\n";
   for (ToleranceClass t : {ToleranceClass::A, ToleranceClass::B, ToleranceClass::C, ToleranceClass::D})
-    o << "<dt><b>class " << tolerance_class_letter(t) << " (" << escaped(tolerance_class_name(t)) << ")</b></dt><dd>"
-      << escaped(tolerance_class_limit(t)) << " " << escaped(tolerance_class_rule(t)) << " "
-      << escaped(tolerance_class_reasoning(t)) << "</dd>\n";
+    o << "<dt><b>class " << tolerance_class_letter(t) << " (" << html_escaped(tolerance_class_name(t)) << ")</b></dt><dd>"
+      << html_escaped(tolerance_class_limit(t)) << " " << html_escaped(tolerance_class_rule(t)) << " "
+      << html_escaped(tolerance_class_reasoning(t)) << "</dd>\n";
   o << "</dl>\n<h2>Checks</h2>\n"
-    << body.str() << "<h2>Provenance</h2>\n<pre>" << escaped(json_text(provenance, 2)) << "</pre>\n<script>"
+    << body.str() << "<h2>Provenance</h2>\n<pre>" << html_escaped(json_text(provenance, 2)) << "</pre>\n<script>"
     << figure_check_script << "</script>\n</body>\n</html>\n";
   return o.str();
 }
@@ -257,13 +258,16 @@ void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json
   make_directories(out_dir);
   write_atomically(out_dir + "/report.json", json_text(report_json(records, provenance), 2) + "\n");
   write_atomically(out_dir + "/report.md", report_markdown(records, provenance));
-  std::vector<Figure> figures;
+  std::vector<std::vector<Figure>> figures;
+  std::vector<Figure> all;
   for (const CheckRecord &r : records)
-    for (Figure &f : check_figures(r))
-      figures.push_back(std::move(f));
+  {
+    figures.push_back(check_figures(r));
+    all.insert(all.end(), figures.back().begin(), figures.back().end());
+  }
   std::map<std::string, DrawnFigure> drawn;
-  for (DrawnFigure &d : draw_figures(figures, out_dir + "/figures"))
+  for (DrawnFigure &d : draw_figures(all, out_dir + "/figures"))
     drawn[d.name] = std::move(d);
-  write_atomically(out_dir + "/report.html", report_html(records, provenance, drawn));
+  write_atomically(out_dir + "/report.html", report_html(records, figures, provenance, drawn));
 }
 } // namespace verify
