@@ -123,6 +123,17 @@ History History::ramp_and_hold(double rate, double ramp_time)
 }
 History History::cyclic(double amplitude, double frequency) { return {Shape::cyclic, 0, 0, amplitude, frequency, 0}; }
 History History::step(double level) { return {Shape::step, 0, 0, 0, 0, level}; }
+History History::general(std::function<double(double)> value, std::function<double(double, double)> rate,
+                         std::vector<double> kinks, double largest_magnitude)
+{
+  History h;
+  h.shape = Shape::general;
+  h.general_value = std::move(value);
+  h.general_rate = std::move(rate);
+  h.general_kinks = std::move(kinks);
+  h.general_magnitude = largest_magnitude;
+  return h;
+}
 
 double History::value(double t) const
 {
@@ -136,6 +147,8 @@ double History::value(double t) const
     return amplitude * std::sin(two_pi * frequency * t);
   case Shape::step:
     return level; // the limit t -> 0+ at t = 0
+  case Shape::general:
+    return general_value(t);
   }
   return 0;
 }
@@ -152,12 +165,16 @@ double History::rate_of_change(double t, double piece_start) const
     return amplitude * two_pi * frequency * std::cos(two_pi * frequency * t);
   case Shape::step:
     return 0;
+  case Shape::general:
+    return general_rate(t, piece_start);
   }
   return 0;
 }
 
 std::vector<double> History::kinks() const
 {
+  if (shape == Shape::general)
+    return general_kinks;
   if (shape == Shape::ramp_and_hold && ramp_time > 0)
     return {ramp_time};
   return {};
@@ -175,6 +192,8 @@ double History::largest_magnitude(double t_end) const
     return frequency * t_end >= 0.25 ? std::abs(amplitude) : std::abs(value(t_end));
   case Shape::step:
     return std::abs(level);
+  case Shape::general:
+    return general_magnitude;
   }
   return 0;
 }

@@ -53,6 +53,7 @@ struct History
     ramp_and_hold, ///< x = rate min(t, ramp_time)
     cyclic,        ///< x = amplitude sin(2 pi frequency t)
     step,          ///< x = level for t > 0
+    general,       ///< any piecewise-smooth history the caller describes
   };
   Shape shape = Shape::constant_rate;
   double rate = 0;      ///< [unit/s]
@@ -60,11 +61,19 @@ struct History
   double amplitude = 0; ///< [unit]
   double frequency = 0; ///< [Hz]
   double level = 0;     ///< [unit]
+  /// Shape::general: x(t); dx/dt at t on the piece that begins at the
+  /// second argument; the kinks; the largest |x| over the history.
+  std::function<double(double)> general_value;
+  std::function<double(double, double)> general_rate;
+  std::vector<double> general_kinks;
+  double general_magnitude = 0;
 
   static History constant_rate(double rate);
   static History ramp_and_hold(double rate, double ramp_time);
   static History cyclic(double amplitude, double frequency);
   static History step(double level);
+  static History general(std::function<double(double)> value, std::function<double(double, double)> rate,
+                         std::vector<double> kinks, double largest_magnitude);
 
   double value(double t) const;
   /// dx/dt at t on the smooth piece of the history that begins at

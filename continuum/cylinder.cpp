@@ -53,9 +53,10 @@ ParallelInfo parallel_info()
 
 namespace
 {
-/// Platens: the bottom fixed, the top moved down by H x strain rate x t;
-/// bonded platens also hold the in-plane displacement; symmetry on the axis
-/// (and on the quarter's planes in 3D).
+/// Platens: the bottom fixed, the top moved down by H x strain rate x t, by
+/// H eps(t), or to where set_top put it (force control); bonded platens
+/// also hold the in-plane displacement; symmetry on the axis (and on the
+/// quarter's planes in 3D).
 template <int dim>
 class PlatenLoading : public Loading<dim>
 {
@@ -75,7 +76,7 @@ public:
     if (dim == 3)
       fix(boundary::symmetry_y, 1, 0);
     fix(boundary::bottom, dim - 1, 0);
-    fix(boundary::top, dim - 1, -spec_.strain_rate * spec_.height * time);
+    fix(boundary::top, dim - 1, top_displacement(time));
     if (spec_.platens == Platens::bonded)
       for (unsigned int d = 0; d + 1 < dim; ++d)
       {
@@ -84,8 +85,21 @@ public:
       }
   }
 
+  /// Axial displacement of the top platen at time t [m], tension positive.
+  double top_displacement(double time) const
+  {
+    if (spec_.axial_stress_history)
+      return chosen_top_;
+    if (spec_.axial_strain_history)
+      return -spec_.height * spec_.axial_strain_history(time);
+    return -spec_.strain_rate * spec_.height * time;
+  }
+  /// Force control: the top displacement of the coming solve [m].
+  void set_top(double displacement) { chosen_top_ = displacement; }
+
 private:
   CylinderSpec spec_;
+  double chosen_top_ = 0;
 };
 
 /// Writes `text` to `path` through a temporary file and a rename, so that
@@ -128,7 +142,8 @@ public:
     mesh.cell_size = cylinder_.cell_size();
     mesh.platen_area = numbers::PI * spec.radius * spec.radius;
     mesh.mesh_platen_area = quarters_ * cylinder_.platen_area();
-    mesh.time_step = spec.final_strain / spec.strain_rate / spec.time_steps;
+    const bool history = spec.axial_strain_history || spec.axial_stress_history;
+    mesh.time_step = (history ? spec.duration : spec.final_strain / spec.strain_rate) / spec.time_steps;
     mesh.ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
   }
 
@@ -141,11 +156,15 @@ public:
     report(0, on_step);
     if (paraview)
       write_frame(0);
-    cylinder_.run(spec_.time_steps, mesh.time_step, [&](unsigned int n) {
+    const auto after_step = [&](unsigned int n) {
       report(n, on_step);
       if (paraview && (n == spec_.time_steps || (spec_.paraview_every > 0 && n % spec_.paraview_every == 0)))
         write_frame(n);
-    });
+    };
+    if (spec_.axial_stress_history)
+      run_force_controlled(after_step);
+    else
+      cylinder_.run(spec_.time_steps, mesh.time_step, after_step);
   }
 
   std::string mesh_edges_csv() const override
@@ -166,12 +185,43 @@ public:
   }
 
 private:
+  /// Each step: a trial at the extrapolated platen displacement, then the
+  /// solve at the displacement whose force is the prescribed one (the force
+  /// is affine in it, with the step's platen stiffness found once).
+  void run_force_controlled(const std::function<void(unsigned int)> &after_step)
+  {
+    const double dt = mesh.time_step;
+    double stiffness = 0, last = 0, before_last = 0;
+    for (unsigned int n = 1; n <= spec_.time_steps; ++n)
+    {
+      const double target = -spec_.axial_stress_history(cylinder_.time() + dt) * mesh.platen_area / quarters_;
+      const double guess = 2 * last - before_last;
+      loading_.set_top(guess);
+      cylinder_.solve_trial(dt);
+      const double force = cylinder_.trial_platen_force();
+      if (stiffness == 0)
+      {
+        const double probe = -1e-6 * spec_.height;
+        loading_.set_top(guess + probe);
+        cylinder_.solve_trial(dt);
+        stiffness = (cylinder_.trial_platen_force() - force) / probe;
+      }
+      before_last = last;
+      last = guess + (target - force) / stiffness;
+      loading_.set_top(last);
+      cylinder_.solve_trial(dt);
+      cylinder_.accept_trial(dt);
+      after_step(n);
+    }
+  }
+
   void report(unsigned int n, const std::function<void(const CylinderStep &)> &on_step) const
   {
     CylinderStep s;
     s.step = n;
     s.time = cylinder_.time();
-    s.axial_strain = spec_.strain_rate * s.time;
+    const bool history = spec_.axial_strain_history || spec_.axial_stress_history;
+    s.axial_strain = history ? -loading_.top_displacement(s.time) / spec_.height + 0.0 : spec_.strain_rate * s.time;
     // (+ 0.0 turns the -0 of the unloaded state into 0 in the outputs.)
     s.axial_stress = -quarters_ * cylinder_.platen_force() / mesh.platen_area + 0.0;
     s.radial_strain = -cylinder_.mid_height_radial_displacement() / spec_.radius + 0.0;

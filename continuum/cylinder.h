@@ -2,7 +2,14 @@
 // the public face of ViscoelasticCylinder<dim> (which this header hides,
 // with all of deal.II, from its users).
 //
-// The bottom platen is fixed, the top one moves down at H x strain rate.
+// The bottom platen is fixed, the top one moves down at H x strain rate,
+// or follows a prescribed axial strain history eps(t) (top displacement
+// -H eps(t)), or carries a prescribed nominal stress sigma(t): a rigid
+// force-controlled platen (creep).  The problem is linear, so the platen
+// force is affine in the platen displacement at every step; the platen
+// stiffness of the step (a constant for a fixed dt) is found from two
+// trial solves once, then each step is one trial solve and one solve at the
+// displacement that gives the prescribed force.
 // Frictionless platens constrain only the axial displacement, so the
 // cylinder stays homogeneous and must reproduce the 1-D closed form
 // (check V20); bonded platens also hold the radial displacement, and
@@ -45,7 +52,12 @@ struct CylinderSpec
   Platens platens = Platens::frictionless;
   double strain_rate = 0.005;          ///< [1/s], compression positive
   double final_strain = 0.02;          ///< [-]
-  unsigned int time_steps = 100;       ///< uniform steps to the final strain
+  /// Prescribed axial strain at time t [-] (empty: strain_rate x t to the final strain).
+  std::function<double(double)> axial_strain_history;
+  /// Prescribed nominal axial stress at time t [Pa], compression positive (creep; overrides the strain).
+  std::function<double(double)> axial_stress_history;
+  double duration = 0;                 ///< [s], with a history: the test ends there
+  unsigned int time_steps = 100;       ///< uniform steps to the final strain (or over the duration)
   Geometry geometry = Geometry::axisymmetric;
   unsigned int degree = 2;             ///< Q_p
   unsigned int refinements = 2;        ///< global refinements (coarse cells about R wide)

@@ -175,6 +175,7 @@ void ViscoelasticCylinder<dim>::setup_system()
 
   system_rhs_.reinit(locally_owned_, communicator_);
   owned_solution_.reinit(locally_owned_, communicator_);
+  accepted_solution_.reinit(locally_owned_, communicator_);
   previous_solution_.reinit(locally_owned_, communicator_);
   solution_.reinit(locally_owned_, locally_relevant_, communicator_);
   states_.assign(triangulation_.n_active_cells() * quadrature_.size(), PointState());
@@ -314,10 +315,9 @@ template <int dim>
 void ViscoelasticCylinder<dim>::solve_timestep(long step)
 {
   // Initial guess: linear extrapolation of the last two solutions.
-  TrilinosWrappers::MPI::Vector guess(owned_solution_);
+  TrilinosWrappers::MPI::Vector guess(accepted_solution_);
   guess *= 2;
   guess -= previous_solution_;
-  previous_solution_ = owned_solution_;
   owned_solution_ = guess;
   constraints_.distribute(owned_solution_);
 
@@ -368,23 +368,37 @@ void ViscoelasticCylinder<dim>::update_quadrature_point_history(double old_time,
 template <int dim>
 void ViscoelasticCylinder<dim>::run(unsigned int steps, double dt, const std::function<void(unsigned int)> &after_step)
 {
+  for (unsigned int n = 1; n <= steps; ++n)
+  {
+    solve_trial(dt);
+    accept_trial(dt);
+    after_step(n);
+  }
+}
+
+template <int dim>
+void ViscoelasticCylinder<dim>::solve_trial(double dt)
+{
   if (dt != assembled_dt_)
   {
     step_ = std::make_unique<SolidStep>(solid_, dt);
     assemble_system();
     assembled_dt_ = dt;
   }
-  for (unsigned int n = 1; n <= steps; ++n)
-  {
-    const double old_time = time_, new_time = time_ + dt;
-    const long step = static_cast<long>(std::lround(new_time / dt));
-    make_constraints(new_time);
-    assemble_rhs(old_time, new_time);
-    solve_timestep(step);
-    update_quadrature_point_history(old_time, new_time, step);
-    time_ = new_time;
-    after_step(n);
-  }
+  const double old_time = time_, new_time = time_ + dt;
+  make_constraints(new_time);
+  assemble_rhs(old_time, new_time);
+  solve_timestep(static_cast<long>(std::lround(new_time / dt)));
+}
+
+template <int dim>
+void ViscoelasticCylinder<dim>::accept_trial(double dt)
+{
+  const double old_time = time_, new_time = time_ + dt;
+  update_quadrature_point_history(old_time, new_time, static_cast<long>(std::lround(new_time / dt)));
+  previous_solution_ = accepted_solution_;
+  accepted_solution_ = owned_solution_;
+  time_ = new_time;
 }
 
 // @sect3{Measurements}
@@ -418,11 +432,38 @@ double ViscoelasticCylinder<dim>::cell_size() const
 template <int dim>
 double ViscoelasticCylinder<dim>::platen_force() const
 {
+  return platen_reaction([this](const auto &cell, const FEValues<dim> &, std::vector<Tensor3> &stresses) {
+    for (unsigned int q = 0; q < quadrature_.size(); ++q)
+      stresses[q] = state(cell, q).stress;
+  });
+}
+
+template <int dim>
+double ViscoelasticCylinder<dim>::trial_platen_force() const
+{
+  std::vector<SymmetricTensor<2, dim>> gradients(quadrature_.size());
+  std::vector<Tensor<1, dim>> values(quadrature_.size());
+  const double old_time = time_, new_time = time_ + assembled_dt_;
+  return platen_reaction([&](const auto &cell, const FEValues<dim> &fe_values, std::vector<Tensor3> &stresses) {
+    fe_values[displacement_].get_function_symmetric_gradients(solution_, gradients);
+    fe_values[displacement_].get_function_values(solution_, values);
+    for (unsigned int q = 0; q < quadrature_.size(); ++q)
+    {
+      const Point<dim> &x = fe_values.quadrature_point(q);
+      stresses[q] =
+        step_->advance(state(cell, q), strain3d<dim>(gradients[q], values[q], x), sources(x, old_time, new_time)).stress;
+    }
+  });
+}
+
+template <int dim>
+double ViscoelasticCylinder<dim>::platen_reaction(const StressAtPoints &stress_at) const
+{
   FEValues<dim> fe_values(mapping_, fe_, quadrature_,
                           update_values | update_gradients | update_quadrature_points | update_JxW_values);
   const unsigned int n = fe_.n_dofs_per_cell();
   std::vector<types::global_dof_index> dofs(n);
-  std::vector<Tensor3> strains(n);
+  std::vector<Tensor3> strains(n), stresses(quadrature_.size());
   double force = 0;
   for (const auto &cell : dof_handler_.active_cell_iterators())
     if (cell->is_locally_owned())
@@ -431,13 +472,14 @@ double ViscoelasticCylinder<dim>::platen_force() const
       if (std::none_of(dofs.begin(), dofs.end(), [&](auto i) { return top_axial_dofs_.is_element(i); }))
         continue;
       fe_values.reinit(cell);
+      stress_at(cell, fe_values, stresses);
       for (unsigned int q = 0; q < quadrature_.size(); ++q)
       {
         const double w = fe_values.JxW(q) * volume_weight(fe_values.quadrature_point(q));
         shape_strains(fe_values, q, strains);
         for (unsigned int i = 0; i < n; ++i)
           if (top_axial_dofs_.is_element(dofs[i]))
-            force += strains[i] * state(cell, q).stress * w;
+            force += strains[i] * stresses[q] * w;
       }
     }
   return Utilities::MPI::sum(force, communicator_);

@@ -120,6 +120,17 @@ public:
   /// stress is not finite.
   void run(unsigned int steps, double dt, const std::function<void(unsigned int)> &after_step);
 
+  /// One step in two parts, for a loading whose constraints are chosen by
+  /// trial (a force-controlled platen): solve_trial solves the step to
+  /// time() + dt with the loading's current constraints and may be called
+  /// again after the loading changed; accept_trial advances the
+  /// quadrature-point states with the last trial and the clock.
+  void solve_trial(double dt);
+  void accept_trial(double dt);
+  /// The platen force of the last trial [N] (as platen_force() would give
+  /// after accept_trial).
+  double trial_platen_force() const;
+
   double time() const { return time_; }
   unsigned int last_iterations() const { return last_iterations_; }
   unsigned long n_cells() const;
@@ -160,6 +171,11 @@ private:
   void assemble_system();
   void assemble_rhs(double old_time, double new_time);
   void solve_timestep(long step);
+  /// Fills the stresses at a cell's quadrature points (fe_values reinit'ed on the cell).
+  using StressAtPoints = std::function<void(const typename dealii::DoFHandler<dim>::active_cell_iterator &,
+                                            const dealii::FEValues<dim> &, std::vector<Tensor3> &)>;
+  /// The axial force on the top platen of the given point stresses [N].
+  double platen_reaction(const StressAtPoints &stress_at) const;
   void update_quadrature_point_history(double old_time, double new_time, long step);
 
   /// The strains of every shape function at quadrature point q.
@@ -186,7 +202,8 @@ private:
   dealii::AffineConstraints<double> constraints_;
   dealii::TrilinosWrappers::SparseMatrix system_matrix_;
   dealii::TrilinosWrappers::PreconditionAMG preconditioner_;
-  dealii::TrilinosWrappers::MPI::Vector system_rhs_, owned_solution_, previous_solution_;
+  dealii::TrilinosWrappers::MPI::Vector system_rhs_, owned_solution_;
+  dealii::TrilinosWrappers::MPI::Vector accepted_solution_, previous_solution_; ///< the last two accepted steps
   dealii::TrilinosWrappers::MPI::Vector solution_; ///< ghosted
 
   std::unique_ptr<SolidStep> step_; ///< the update for the current dt

@@ -29,8 +29,15 @@ double UniaxialCompression::platen_stress(const Simulation &sim, WallIndex w) co
   return -sim.wall_force(w).dot(sim.walls()[w].direction) / area_;
 }
 
+bool UniaxialCompression::finished(const Simulation &sim) const
+{
+  return scheduled() ? elapsed(sim) >= settings_.duration : axial_strain(sim) >= settings_.final_strain;
+}
+
 double UniaxialCompression::time_left(const Simulation &sim) const
 {
+  if (scheduled())
+    return std::max(0.0, settings_.duration - elapsed(sim));
   // The approach covers speed t^2 / (2 ramp) during the ramp and
   // speed (t - ramp / 2) after it.
   const double distance = settings_.final_strain * height0_, ramp = settings_.ramp_time;
@@ -39,14 +46,35 @@ double UniaxialCompression::time_left(const Simulation &sim) const
   return std::max(0.0, total - (sim.time() - start_time_));
 }
 
-void UniaxialCompression::drive(Simulation &sim) const
+double UniaxialCompression::scheduled_speed(const Simulation &sim)
 {
-  const double elapsed = sim.time() - start_time_;
-  const double ramp = settings_.ramp_time > 0 ? std::min(1.0, elapsed / settings_.ramp_time) : 1.0;
-  const double speed = speed_ * ramp;
+  const double dt = sim.time_step();
+  if (!(dt > 0))
+    return 0;
+  if (settings_.stress_schedule)
+  {
+    const double proportional = servo_platen_speed(sim, top_, area_, stress_top(sim),
+                                                   settings_.stress_schedule(elapsed(sim) + dt), settings_.servo);
+    servo_integral_ += settings_.servo.integral * proportional;
+    return proportional + servo_integral_;
+  }
+  // The approach that puts the platens on the schedule at the end of the step.
+  return (settings_.strain_schedule(elapsed(sim) + dt) - axial_strain(sim)) * height0_ / dt;
+}
+
+void UniaxialCompression::drive(Simulation &sim)
+{
+  double speed = 0;
+  if (scheduled())
+    speed = scheduled_speed(sim);
+  else
+  {
+    const double ramp = settings_.ramp_time > 0 ? std::min(1.0, elapsed(sim) / settings_.ramp_time) : 1.0;
+    speed = speed_ * ramp;
+  }
   Wall &top = sim.walls()[top_];
   Wall &bottom = sim.walls()[bottom_];
-  if (settings_.both_platens)
+  if (settings_.both_platens && !settings_.stress_schedule)
   {
     top.velocity = 0.5 * speed * top.direction;
     bottom.velocity = 0.5 * speed * bottom.direction;

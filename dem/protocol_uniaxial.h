@@ -8,9 +8,19 @@
 // strain rate times the initial height.  Axial strain is (H0 - H)/H0 from
 // the platen separation; nominal stress is the force on a platen over the
 // initial cross-section area (compression positive).
+//
+// Other loading histories are schedules of time since the start: a
+// prescribed axial strain eps(t) (relaxation, cyclic loading), which the
+// platens follow by moving each step to where the schedule puts them at
+// the end of the step, or a prescribed axial stress sigma(t) (creep), which
+// a servo on the top platen tracks (eq. 3.12-3.16, servo.h) while the
+// bottom one stays fixed.  A scheduled test ends at its duration.
 #pragma once
 
+#include "dem/servo.h"
 #include "dem/simulation.h"
+
+#include <functional>
 
 namespace dem
 {
@@ -21,6 +31,12 @@ struct UniaxialSettings
   double ramp_time = 0;     ///< s, linear ramp of the speed from zero
   double final_strain = 0;  ///< -, the test stops there
   bool both_platens = false;
+  /// Prescribed axial strain at time t after the start (empty: constant speed) [-].
+  std::function<double(double)> strain_schedule;
+  /// Prescribed nominal axial stress at time t (servo on the top platen) [Pa].
+  std::function<double(double)> stress_schedule;
+  double duration = 0;       ///< s, a scheduled test ends there
+  ServoSettings servo;       ///< creep: the platen servo's relaxation factor and speed limit
 };
 
 class UniaxialCompression : public StepHooks
@@ -32,13 +48,20 @@ public:
                       const UniaxialSettings &settings);
 
   /// Sets the platen velocities for the coming step.
-  void drive(Simulation &sim) const;
+  void drive(Simulation &sim);
   /// The step hook: platens are driven before the forces of every step.
   void before_forces(Simulation &sim) override { drive(sim); }
-  bool finished(const Simulation &sim) const { return axial_strain(sim) >= settings_.final_strain; }
+  bool finished(const Simulation &sim) const;
+  bool scheduled() const { return settings_.strain_schedule || settings_.stress_schedule; }
+  /// Time since the start of the test [s].
+  double elapsed(const Simulation &sim) const { return sim.time() - start_time_; }
   /// Simulated time until the platens have closed to the final strain on
   /// their schedule (the ramp, then the full speed) [s].
   double time_left(const Simulation &sim) const;
+
+  /// The held speed of the creep servo's integral action [m/s] (checkpoints keep it).
+  double servo_integral() const { return servo_integral_; }
+  void set_servo_integral(double speed) { servo_integral_ = speed; }
 
   double initial_height() const { return height0_; }
   double area() const { return area_; }
@@ -49,11 +72,14 @@ public:
   double stress_bottom(const Simulation &sim) const { return platen_stress(sim, bottom_); }
 
 private:
+  /// Approach speed of the platens for the coming step of a scheduled test [m/s].
+  double scheduled_speed(const Simulation &sim);
   double separation(const Simulation &sim) const;
   double platen_stress(const Simulation &sim, WallIndex w) const;
 
   WallIndex bottom_, top_;
   double area_, height0_, speed_, start_time_;
+  double servo_integral_ = 0;
   UniaxialSettings settings_;
 };
 } // namespace dem

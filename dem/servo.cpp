@@ -19,14 +19,14 @@ struct WallTally
   double normal_force = 0; ///< N, sum over the contacts
 };
 
-/// The tallies of bottom, top and lateral wall, in one pass over the balls.
-std::array<WallTally, 3> tally_cell_walls(const Simulation &sim, const Specimen &cell)
+/// The tallies of the given walls, in one pass over the balls.
+template <std::size_t N>
+std::array<WallTally, N> tally_walls(const Simulation &sim, const std::array<WallIndex, N> &walls)
 {
   const ParticleStore &p = sim.particles();
-  const WallIndex walls[3] = {cell.bottom, cell.top, cell.lateral};
-  std::array<WallTally, 3> t;
+  std::array<WallTally, N> t;
   for (Index b = 0; b < p.size(); ++b)
-    for (int k = 0; k < 3; ++k)
+    for (std::size_t k = 0; k < N; ++k)
     {
       const ContactState &c = sim.walls().state(walls[k], b);
       if (c.touching)
@@ -37,6 +37,12 @@ std::array<WallTally, 3> tally_cell_walls(const Simulation &sim, const Specimen 
       }
     }
   return t;
+}
+
+/// The tallies of bottom, top and lateral wall.
+std::array<WallTally, 3> tally_cell_walls(const Simulation &sim, const Specimen &cell)
+{
+  return tally_walls<3>(sim, {cell.bottom, cell.top, cell.lateral});
 }
 
 double separation(const Simulation &sim, const Specimen &cell)
@@ -106,6 +112,14 @@ CellStress servo_cell(Simulation &sim, const Specimen &cell, const ServoSettings
   }
   side.radial_velocity = servo_speed(sim, cell.lateral, t[2], side_area, s.lateral, settings);
   return s;
+}
+
+double servo_platen_speed(const Simulation &sim, WallIndex platen, double area, double measured, double target,
+                          const ServoSettings &settings)
+{
+  ServoSettings s = settings;
+  s.target_stress = target;
+  return -servo_speed(sim, platen, tally_walls<1>(sim, {platen})[0], area, measured, s);
 }
 
 void stop_walls(Simulation &sim, const Specimen &cell)

@@ -27,6 +27,13 @@ struct ServoSettings
   double target_stress = 0;  ///< Pa, compression positive
   double relaxation = 0.5;   ///< alpha of eq. 3.15, in (0, 1)
   double max_step_fraction = 0.01; ///< largest wall move per step, fraction of the smallest ball radius
+  /// Integral action of a platen servo that tracks a moving target (creep):
+  /// each step adds this fraction of the proportional speed to a held
+  /// speed, which removes the lag a proportional servo keeps behind a
+  /// target that needs a steady platen speed.  0: proportional only (the
+  /// preparation servo).  With alpha = 0.5 and 0.05 the loop's discrete
+  /// eigenvalues are real and inside the unit circle.
+  double integral = 0;
 };
 
 /// Stress on each wall of the cylindrical cell [Pa], compression positive.
@@ -44,6 +51,12 @@ CellStress cell_stress(const Simulation &sim, const Specimen &cell);
 /// step so that each approaches the target stress (eq. 3.12-3.16); returns
 /// the stresses measured.
 CellStress servo_cell(Simulation &sim, const Specimen &cell, const ServoSettings &settings);
+
+/// Speed at which a platen moves towards the balls (along its direction) so
+/// that its nominal stress `measured` approaches `target` (eq. 3.12-3.16,
+/// with the safeguards above) [m/s]; area is the nominal platen area.
+double servo_platen_speed(const Simulation &sim, WallIndex platen, double area, double measured, double target,
+                          const ServoSettings &settings);
 
 /// Stops every wall of the cell.
 void stop_walls(Simulation &sim, const Specimen &cell);

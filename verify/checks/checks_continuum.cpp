@@ -58,15 +58,6 @@ double worst_order_deviation(const ConvergenceTable &t, double expected)
   return std::max(std::abs(t.rows[n - 1].order - expected), std::abs(t.rows[n - 2].order - expected));
 }
 
-/// max |a - b| / max |b| (NaN for an empty or zero reference).
-double relative_deviation(const std::vector<double> &a, const std::vector<double> &b)
-{
-  std::vector<double> d(a.size());
-  for (std::size_t k = 0; k < a.size(); ++k)
-    d[k] = a[k] - b[k];
-  const double scale = max_abs(b);
-  return scale > 0 && a.size() == b.size() ? max_abs(d) / scale : std::nan("");
-}
 
 std::string setting(const std::string &key, double value) { return key + "=" + num(value); }
 

@@ -33,15 +33,6 @@ double first_crossing(const std::vector<double> &time, const std::vector<double>
   return std::nan("");
 }
 
-double max_abs(const std::vector<double> &v)
-{
-  if (v.empty())
-    return std::nan("");
-  double m = 0;
-  for (double x : v)
-    m = std::max(m, std::abs(x));
-  return m;
-}
 
 std::string num(double v)
 {

@@ -1,6 +1,8 @@
 // Helpers shared by the check implementations (checks_*.cpp).
 #pragma once
 
+#include "verify/run/analysis.h"
+
 #include "verify/checks/check.h"
 #include "verify/decks/deck.h"
 #include "verify/kinds/scene.h"
@@ -25,8 +27,6 @@ Deck load_case(const CheckContext &ctx, const std::string &name, const std::vect
 /// interpolated between rows; NaN if it never does.
 double first_crossing(const std::vector<double> &time, const std::vector<double> &values, double level);
 
-/// Largest absolute value of a vector (NaN if empty).
-double max_abs(const std::vector<double> &v);
 
 /// Formats a number for notes.
 std::string num(double v);

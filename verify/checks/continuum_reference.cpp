@@ -46,7 +46,7 @@ dem::BurgersConstants burgers_constants(const continuum::BurgersChain &chain)
 
 bool has_closed_form(Control control, const continuum::History &history)
 {
-  return control == Control::displacement || history.shape == Shape::step;
+  return history.shape != Shape::general && (control == Control::displacement || history.shape == Shape::step);
 }
 
 std::string closed_form_name(Control control, const continuum::History &history)
@@ -63,6 +63,8 @@ std::string closed_form_name(Control control, const continuum::History &history)
     return "eq. 7.15-7.16 hereditary integral of a sine";
   case Shape::step:
     return "eq. 7.16 relaxation modulus (displacement step)";
+  case Shape::general:
+    break;
   }
   return "none";
 }
@@ -84,6 +86,8 @@ double closed_form(const continuum::BurgersChain &chain, Control control, const 
     return cyclic_force(b, history.amplitude, history.frequency, t);
   case Shape::step:
     return history.level * relaxation_modulus(b, t);
+  case Shape::general:
+    break;
   }
   return std::nan("");
 }

@@ -38,7 +38,12 @@ void declare_cylinder(DeckSchema &s)
            "'bonded' (no radial motion on the platens: barrelling).");
   s.real("strain rate", 0.005, 0, inf, "1/s", "Axial strain rate, compression positive (thesis §7.2.3: 0.005).",
          true);
-  s.real("final strain", 0.02, 0, 0.2, "-", "Axial strain at which the test stops (small-strain theory).", true);
+  s.real("final strain", 0.02, 0, 0.2, "-",
+         "Axial strain at which a constant-rate test stops (small-strain theory).", true);
+  s.real("ramp time", 0, 0, inf, "s",
+         "The loading speed rises linearly from zero over this time (as the DEM platens do; creep: the stress "
+         "rises over it).");
+  LoadingHistory::declare(s);
   s.leave();
   s.enter("discretisation");
   s.choice("model", "axisymmetric", {"axisymmetric", "3d"},
@@ -47,7 +52,9 @@ void declare_cylinder(DeckSchema &s)
   s.integer("degree", 2, 1, 4, "Polynomial degree p of the Q_p elements (and of the geometry mapping).");
   s.integer("refinements", 2, 0, 8,
             "Global refinements of the coarse mesh, whose cells are about R wide (h = R / 2^refinements).");
-  s.integer("time steps", 100, 1, 10000000, "Uniform time steps to the final strain (trapezoidal update, order 2).");
+  s.integer("time steps", 100, 1, 10000000,
+            "Uniform time steps to the final strain, or over the whole history (trapezoidal update, order 2; a "
+            "kink of the history between two step times costs the step one order).");
   s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.", true);
   s.leave();
   s.enter("study");
@@ -96,13 +103,41 @@ const std::vector<std::string> columns = {"time_s",
                                           "radial_strain",
                                           "axial_stress_closed_form_pa",
                                           "radial_strain_closed_form",
-                                          "cg_iterations"};
+                                          "cg_iterations",
+                                          "axial_strain_closed_form"};
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 const char *platens_keyword(continuum::Platens platens)
 {
   return platens == continuum::Platens::bonded ? "bonded" : "frictionless";
+}
+
+/// The 1-D chain's response (CVODE) at every step time of a test with a
+/// history; empty for a constant rate from rest, which has its closed form.
+std::vector<continuum::OdeState> history_reference(const LoadingHistory &history, const continuum::CylinderSpec &test)
+{
+  if (!test.axial_strain_history && !test.axial_stress_history)
+    return {};
+  const continuum::BurgersOde ode(test.solid.uniaxial(), history.ode_control(), history.ode_history());
+  std::vector<double> times;
+  for (unsigned int n = 0; n <= test.time_steps; ++n)
+    times.push_back(test.duration * n / test.time_steps);
+  continuum::OdeTolerances tolerances;
+  tolerances.relative = 1e-10;
+  return ode.solve(times, tolerances);
+}
+
+nlohmann::json loading_json(const LoadingHistory &history, const continuum::CylinderSpec &test)
+{
+  nlohmann::json j = history.to_json();
+  j["platens"] = platens_keyword(test.platens);
+  j["reference"] = test.axial_strain_history || test.axial_stress_history
+                     ? "the 1-D chain under the same history (CVODE, relative tolerance 1e-10)"
+                     : "eq. 7.18 (constant velocity)";
+  if (history.kind != LoadingHistory::Kind::constant_rate)
+    j.erase("final_strain");
+  return j;
 }
 
 /// One compression test of a deck (`test` is its test at one level); the
@@ -119,6 +154,7 @@ CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderS
                                         "radial strain = -u_r/R at mid-height; closed form: eq. 7.18 with the "
                                         "solid's uniaxial chain (homogeneous state)");
   const dem::BurgersConstants uniaxial = burgers_constants(test.solid.uniaxial());
+  const std::vector<continuum::OdeState> reference = history_reference(spec.history, test);
   const continuum::ParallelInfo mpi = continuum::parallel_info();
   Progress progress(mpi.rank == 0 ? "cylinder " + spec.deck.name : "");
   const auto start = std::chrono::steady_clock::now();
@@ -130,9 +166,16 @@ CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderS
     if (!series_path.empty() && mpi.ranks == 1)
       write_atomically(series_path.substr(0, series_path.rfind('/') + 1) + "mesh.csv", compression.mesh_edges_csv());
     compression.run([&](const continuum::CylinderStep &s) {
-      const double closed = uniaxial.constant_velocity_force(s.time, test.strain_rate);
+      double closed = 0, closed_strain = s.axial_strain;
+      if (reference.empty())
+        closed = uniaxial.constant_velocity_force(s.time, test.strain_rate);
+      else
+      {
+        closed = reference[s.step].force;
+        closed_strain = reference[s.step].displacement;
+      }
       run.series.add({s.time, s.axial_strain, s.axial_stress, s.radial_strain, closed,
-                      test.solid.lateral_strain(s.axial_strain, closed) + 0.0, double(s.iterations)});
+                      test.solid.lateral_strain(closed_strain, closed) + 0.0, double(s.iterations), closed_strain});
       iterations += s.iterations;
       run.status.steps = s.step;
       run.status.time = s.time;
@@ -170,9 +213,7 @@ CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderS
                   {"nominal_platen_area_m2", run.mesh.platen_area},
                   {"mesh_platen_area_m2", run.mesh.mesh_platen_area}}},
     {"material", spec.material},
-    {"loading", {{"platens", platens_keyword(test.platens)},
-                 {"strain_rate_per_s", test.strain_rate},
-                 {"final_strain", test.final_strain}}},
+    {"loading", loading_json(spec.history, test)},
     {"discretisation", {{"degree", test.degree},
                         {"refinements", test.refinements},
                         {"cells", run.mesh.cells},
@@ -193,6 +234,8 @@ CylinderResult compress(const CylinderDeckSpec &spec, const continuum::CylinderS
     {"fit_window_axial_strain", {spec.fit_from, spec.fit_to}},
     {"radial_strain_at_end", rad.empty() ? nlohmann::json(nullptr) : nlohmann::json(rad.back())},
     {"max_deviation_from_homogeneous_closed_form", number_or_null(scale > 0 ? deviation / scale : std::nan(""))},
+    {"max_strain_deviation_from_homogeneous_closed_form",
+     number_or_null(relative_deviation(eps, run.series.column("axial_strain_closed_form")))},
     {"wall_seconds", run.status.wall_seconds}};
   return run;
 }
@@ -265,8 +308,8 @@ CylinderDeckSpec parse_cylinder(const Deck &deck)
   spec.material = material.description;
   test.platens = deck.text("loading/platens") == "bonded" ? continuum::Platens::bonded
                                                            : continuum::Platens::frictionless;
-  test.strain_rate = deck.real("loading/strain rate");
-  test.final_strain = deck.real("loading/final strain");
+  spec.history = LoadingHistory::parse(deck);
+  spec.history.apply_to(test);
   test.time_steps = static_cast<unsigned int>(deck.integer("discretisation/time steps"));
   test.geometry = deck.text("discretisation/model") == "3d" ? continuum::Geometry::three_dimensional
                                                             : continuum::Geometry::axisymmetric;

@@ -20,6 +20,7 @@
 
 #include "verify/kinds/continuum_gci.h"
 #include "verify/decks/deck.h"
+#include "verify/decks/loading_history.h"
 #include "verify/run/run.h"
 #include "verify/io/series.h"
 
@@ -58,6 +59,7 @@ struct CylinderDeckSpec
   /// directory when paraview is on).
   continuum::CylinderSpec test;
   nlohmann::json material; ///< the material's route, inputs and moduli (summary.json)
+  LoadingHistory history;  ///< the loading (test carries its schedule)
   /// Refinement levels of a GCI study, increasing (empty: one run at
   /// test.refinements; else three or four levels).
   std::vector<unsigned int> gci_levels;

@@ -53,7 +53,9 @@ void declare_uniaxial(DeckSchema &s)
   s.real("ramp time", 0, 0, inf, "s", "The platen speed rises linearly from zero over this time (thesis §6.1).");
   s.real("final strain", 0.03, 0, 1, "-", "Axial strain at which the test stops (thesis: 3 %).", true);
   s.choice("moving platens", "top", {"top", "both"},
-           "'top': the top platen moves, the bottom one is fixed (thesis); 'both': each moves at half speed.");
+           "'top': the top platen moves, the bottom one is fixed (thesis); 'both': each moves at half speed "
+           "(not for creep: its servo drives the top platen).");
+  LoadingHistory::declare(s);
   s.leave();
   declare_rate(s);
   declare_motion(s, "0, 0, 0", 0.7);
@@ -72,7 +74,9 @@ void declare_uniaxial(DeckSchema &s)
               "Axial strain interval over which the initial modulus and Poisson's ratio are fitted.");
   s.leave();
   s.enter("output");
-  s.real("strain interval", 1e-4, 0, 1, "-", "Axial strain between output rows.", true);
+  s.real("strain interval", 1e-4, 0, 1, "-", "Axial strain between output rows (constant-rate history).", true);
+  s.real("time interval", 0, 0, inf, "s",
+         "Time between output rows of the other histories (creep, relaxation, cyclic); 0: 1/500 of the test.");
   s.flag("paraview", false, "Write ParaView files (particles, contact forces, broken bonds) to paraview/.");
   s.real("paraview strain interval", 0.005, 0, 1, "-", "Axial strain between ParaView frames.", true);
   declare_checkpoint_interval(s);
@@ -214,12 +218,12 @@ class UniaxialProtocol final : public DemProtocol
 public:
   UniaxialProtocol(const UniaxialSpec &spec, const Setup &setup, const dem::Simulation &sim, Series &series)
     : spec_(spec), cell_(setup.cell), bonds_(setup.bonds), rate_(setup.rate), series_(series),
-      test_(sim, setup.cell.bottom, setup.cell.top, setup.cell.area(), loading(spec)),
+      test_(sim, setup.cell.bottom, setup.cell.top, setup.cell.area(), loading(spec, setup.cell.height)),
       gauges_(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, spec.gauge_thickness),
       circumference_(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, 1.0 + 1e-9),
       spheres_{{dem::Vec3(0, 0, setup.cell.height / 3), spec.sphere_radius * setup.cell.diameter},
                {dem::Vec3(0, 0, 2 * setup.cell.height / 3), spec.sphere_radius * setup.cell.diameter}},
-      strain_rate_(test_.final_speed() / setup.cell.height)
+      strain_rate_(test_.final_speed() / setup.cell.height), history_(history(spec, setup.cell.height))
   {
     // Gauge-thickness study (thesis §5.4.3, Fig. 5.13): the same measure
     // with bands of other thicknesses, against all balls on the circumference.
@@ -232,12 +236,30 @@ public:
         columns.push_back("radial_strain_gauge_" + num_text(t));
       columns.push_back("radial_strain_circumference");
     }
+    if (test_.scheduled())
+      columns.push_back(history_.stress_controlled() ? "axial_stress_prescribed_pa" : "axial_strain_prescribed");
     series_ = Series(columns);
   }
 
-  static dem::UniaxialSettings loading(const UniaxialSpec &spec)
+  /// The deck's history at the sample's loading rate.
+  static LoadingHistory history(const UniaxialSpec &spec, double height)
+  {
+    LoadingHistory h = spec.history;
+    h.strain_rate = run_strain_rate(spec, height);
+    return h;
+  }
+
+  static dem::UniaxialSettings loading(const UniaxialSpec &spec, double height)
   {
     dem::UniaxialSettings load;
+    const LoadingHistory h = history(spec, height);
+    if (h.stress_controlled())
+      load.stress_schedule = [h](double t) { return h.axial_stress(t); };
+    else if (h.kind != LoadingHistory::Kind::constant_rate)
+      load.strain_schedule = [h](double t) { return h.axial_strain(t); };
+    load.duration = h.duration();
+    load.servo.relaxation = h.servo_relaxation;
+    load.servo.integral = 0.05;
     load.platen_speed = spec.by_platen_speed ? spec.platen_speed : 0;
     load.strain_rate = spec.strain_rate;
     load.ramp_time = spec.ramp_time;
@@ -254,11 +276,14 @@ public:
   }
 
   std::string label() const override { return "uniaxial " + spec_.deck.name; }
-  std::string clock_name() const override { return "axial_strain"; }
-  double clock(const dem::Simulation &sim) const override { return test_.axial_strain(sim); }
+  std::string clock_name() const override { return test_.scheduled() ? "time_s" : "axial_strain"; }
+  double clock(const dem::Simulation &sim) const override
+  {
+    return test_.scheduled() ? test_.elapsed(sim) : test_.axial_strain(sim);
+  }
   double fraction_done(const dem::Simulation &sim) const override
   {
-    return test_.axial_strain(sim) / spec_.final_strain;
+    return test_.scheduled() ? test_.elapsed(sim) / history_.duration() : test_.axial_strain(sim) / spec_.final_strain;
   }
   bool finished(const dem::Simulation &sim) const override { return test_.finished(sim); }
   double time_left(const dem::Simulation &sim) const override { return test_.time_left(sim); }
@@ -277,6 +302,14 @@ public:
   }
 
   void before_forces(dem::Simulation &sim) override { test_.before_forces(sim); }
+  std::vector<double> checkpoint_values() const override { return {test_.servo_integral(), servo_error_}; }
+  void restore_values(const std::vector<double> &values) override
+  {
+    test_.set_servo_integral(values[0]);
+    servo_error_ = values[1];
+  }
+  /// Simulated duration of the test [s].
+  double duration() const { return history_.duration(); }
 
   void measure(const dem::Simulation &sim) override
   {
@@ -303,6 +336,13 @@ public:
       for (const dem::RadialGauges &g : study_gauges_)
         row_.push_back(g.radial_strain(sim.particles()));
       row_.push_back(circumference_.radial_strain(sim.particles()));
+    }
+    if (test_.scheduled())
+    {
+      const double t = test_.elapsed(sim);
+      row_.push_back(history_.stress_controlled() ? history_.axial_stress(t) : history_.axial_strain(t));
+      if (history_.stress_controlled() && t >= history_.hold_start())
+        servo_error_ = std::max(servo_error_, std::abs(s_top - history_.hold_stress) / history_.hold_stress);
     }
   }
 
@@ -357,11 +397,7 @@ public:
                   {"radial_gauges", gauges_.size()},
                   {"measurement_sphere_radius_m", spec_.sphere_radius * cell_.diameter}}},
       {"contact_law", std::string(sim.model().name())},
-      {"loading", {{"platen_speed_mps", test_.final_speed()},
-                   {"strain_rate_per_s", strain_rate_},
-                   {"ramp_time_s", spec_.ramp_time},
-                   {"final_strain", spec_.final_strain},
-                   {"moving_platens", spec_.both_platens ? "both" : "top"}}},
+      {"loading", loading_json()},
       {"rate", rate},
       {"peak_stress_pa", pk.value},
       {"strain_at_peak", pk.at},
@@ -397,6 +433,23 @@ public:
   }
 
 private:
+  nlohmann::json loading_json() const
+  {
+    nlohmann::json j = {{"platen_speed_mps", test_.final_speed()},
+                        {"strain_rate_per_s", strain_rate_},
+                        {"ramp_time_s", spec_.ramp_time},
+                        {"final_strain", spec_.final_strain},
+                        {"moving_platens", spec_.both_platens ? "both" : "top"}};
+    if (test_.scheduled())
+    {
+      j.erase("final_strain");
+      j.update(history_.to_json());
+    }
+    if (history_.stress_controlled())
+      j["servo_max_stress_error_fraction"] = servo_error_;
+    return j;
+  }
+
   const UniaxialSpec &spec_;
   const dem::Specimen &cell_;
   const dem::BondReport &bonds_;
@@ -407,6 +460,8 @@ private:
   std::vector<dem::RadialGauges> study_gauges_;
   dem::MeasurementSphere spheres_[2];
   double strain_rate_;
+  LoadingHistory history_;
+  double servo_error_ = 0; ///< creep: largest |top stress - hold stress| / hold stress during the hold
   std::vector<double> row_;
 };
 } // namespace
@@ -465,6 +520,10 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
   spec.ramp_time = deck.real("loading/ramp time");
   spec.final_strain = deck.real("loading/final strain");
   spec.both_platens = deck.text("loading/moving platens") == "both";
+  spec.history = LoadingHistory::parse(deck);
+  if (spec.history.stress_controlled() && spec.both_platens)
+    deck.fail("loading/moving platens", "creep drives the top platen by a servo: expected top");
+  spec.time_interval = deck.real("output/time interval");
   spec.rate = RateSpec::parse(deck);
   spec.motion = parse_motion(deck);
   spec.gauge_thickness = deck.real("measurement/gauge thickness");
@@ -494,7 +553,15 @@ UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options)
   UniaxialProtocol protocol(spec, setup, *result.sim, result.series);
   RunFiles files(options, spec.deck, threads, static_cast<long long>(spec.bonds.settings.seed),
                  protocol.convention(), spec.output.paraview);
-  DemOutcome outcome = run_dem(*result.sim, protocol, files, spec.output, options);
+  DemOutputSpec output = spec.output;
+  if (spec.history.kind != LoadingHistory::Kind::constant_rate)
+  {
+    // The other histories are clocked in time.
+    const double duration = protocol.duration();
+    output.interval = spec.time_interval > 0 ? spec.time_interval : duration / 500;
+    output.paraview_interval = duration / 20;
+  }
+  DemOutcome outcome = run_dem(*result.sim, protocol, files, output, options);
   result.status = outcome.status;
   result.summary = std::move(outcome.summary);
   return result;

@@ -1,5 +1,6 @@
-// Uniaxial decks: constant-strain-rate compression of a bonded cylinder
-// between frictionless platens (thesis §6.1-6.3).
+// Uniaxial decks: compression of a bonded cylinder between frictionless
+// platens (thesis §6.1-6.3) at constant strain rate, or under another
+// loading history (creep, relaxation, cyclic strain: loading_history.h).
 //
 // The sample is a prepared packing (thesis ch. 5: a sample file, or a
 // prepare deck whose sample is prepared once and cached), or a regular
@@ -17,6 +18,7 @@
 
 #include "verify/decks/deck.h"
 #include "verify/decks/deck_sections.h"
+#include "verify/decks/loading_history.h"
 #include "verify/io/sample_file.h"
 #include "verify/io/series.h"
 #include "verify/run/dem_driver.h"
@@ -58,6 +60,8 @@ struct UniaxialSpec
   double ramp_time = 0;          ///< s
   double final_strain = 0;       ///< -
   bool both_platens = false;
+  LoadingHistory history;        ///< its strain rate is set once the sample's height is known
+  double time_interval = 0;      ///< s between rows of a history other than constant rate (0: 1/500 of it)
   RateSpec rate;
   dem::SimulationSettings motion;
   // measurement
@@ -65,7 +69,7 @@ struct UniaxialSpec
   double sphere_radius = 0;      ///< fraction of the diameter
   std::vector<double> gauge_study;
   double fit_from = 0, fit_to = 0; ///< axial strain window of the elastic fit
-  DemOutputSpec output;          ///< clock: axial strain [-]
+  DemOutputSpec output;          ///< clock: axial strain [-] at constant rate, else time [s]
 };
 
 UniaxialSpec parse_uniaxial(const Deck &deck);

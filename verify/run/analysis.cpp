@@ -3,6 +3,7 @@
 #include <gsl/gsl_fit.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace verify
 {
@@ -72,5 +73,23 @@ bool x_at_max_rate(const std::vector<double> &x, const std::vector<double> &y, d
     }
   }
   return found;
+}
+double max_abs(const std::vector<double> &v)
+{
+  if (v.empty())
+    return std::nan("");
+  double m = 0;
+  for (double x : v)
+    m = std::max(m, std::abs(x));
+  return m;
+}
+
+double relative_deviation(const std::vector<double> &a, const std::vector<double> &b)
+{
+  std::vector<double> d(a.size());
+  for (std::size_t k = 0; k < a.size(); ++k)
+    d[k] = a[k] - b[k];
+  const double scale = max_abs(b);
+  return scale > 0 && a.size() == b.size() ? max_abs(d) / scale : std::nan("");
 }
 } // namespace verify

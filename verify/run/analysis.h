@@ -43,6 +43,11 @@ struct Peak
 
 Peak peak(const std::vector<double> &x, const std::vector<double> &y);
 
+/// max |v| (NaN for an empty v).
+double max_abs(const std::vector<double> &v);
+/// max |a - b| / max |b| (NaN for an empty or zero reference or unequal lengths).
+double relative_deviation(const std::vector<double> &a, const std::vector<double> &b);
+
 /// x where dy/dx is largest; returns false (and leaves `at`) with fewer than two points.
 bool x_at_max_rate(const std::vector<double> &x, const std::vector<double> &y, double &at, double &rate);
 } // namespace verify

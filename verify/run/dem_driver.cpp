@@ -71,6 +71,14 @@ double exact_value(const nlohmann::json &j)
   return s == "inf" ? INFINITY : -INFINITY;
 }
 
+nlohmann::json exact_values(const std::vector<double> &values)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (double v : values)
+    out.push_back(exact(v));
+  return out;
+}
+
 /// The driver's part of a step: the output cadence, ParaView frames and the
 /// bond-break log, around the protocol's own hooks.
 class Cadence final : public dem::StepHooks
@@ -171,12 +179,7 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
   {
     nlohmann::json rows = nlohmann::json::array();
     for (const std::vector<double> &r : f.series->all_rows())
-    {
-      nlohmann::json row = nlohmann::json::array();
-      for (double v : r)
-        row.push_back(exact(v));
-      rows.push_back(std::move(row));
-    }
+      rows.push_back(exact_values(r));
     const std::string path = dir + "/" + f.file;
     series.push_back({{"file", f.file},
                       {"bytes", std::filesystem::exists(path) ? std::filesystem::file_size(path) : 0},
@@ -188,6 +191,7 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
                               {"steps", sim.steps()},
                               {"time_s", sim.time()},
                               {"cadence", cadence.state()},
+                              {"protocol", exact_values(protocol.checkpoint_values())},
                               {"files", files.checkpoint_state()},
                               {"series", std::move(series)}};
   // The driver's state is written last: a checkpoint whose state file names
@@ -220,6 +224,14 @@ void resume_from_checkpoint_state(dem::Simulation &sim, DemProtocol &protocol, R
                     std::to_string(state.snapshot.clock.steps) + ") disagree: expected one checkpoint");
   sim.restore(std::move(state.snapshot));
   cadence.restore(doc.at("cadence"));
+  std::vector<double> values;
+  for (const nlohmann::json &v : doc.value("protocol", nlohmann::json::array()))
+    values.push_back(exact_value(v));
+  if (values.size() != protocol.checkpoint_values().size())
+    throw DeckError(checkpoint_state_file(dir) + ": the checkpoint holds " + std::to_string(values.size()) +
+                    " protocol values, the deck's test keeps " + std::to_string(protocol.checkpoint_values().size()) +
+                    ": expected the same deck");
+  protocol.restore_values(values);
   files.resume(doc.at("files"));
   const std::vector<SeriesFile> series = protocol.series_files();
   const nlohmann::json &saved = doc.at("series");

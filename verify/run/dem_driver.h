@@ -156,6 +156,10 @@ public:
   /// True when the test is about contact dynamics (impacts, waves): the
   /// driver then warns when the step resolves contact periods poorly.
   virtual bool resolves_contact_dynamics() const { return false; }
+  /// The protocol's own state that the simulation does not hold (a servo's
+  /// integral, a running maximum), kept bit for bit by checkpoints.
+  virtual std::vector<double> checkpoint_values() const { return {}; }
+  virtual void restore_values(const std::vector<double> & /*values*/) {}
   /// summary.json (without status and provenance, which the driver adds);
   /// may write further files into `dir` (null when nothing is written).
   virtual nlohmann::json summary(const dem::Simulation &sim, const RunStatus &status,
