@@ -4,6 +4,7 @@
 // against the 1-D chain integrated by CVODE, and the one-line errors.
 #include "verify/decks/deck.h"
 #include "verify/decks/loading_history.h"
+#include "verify/kinds/compare.h"
 #include "verify/kinds/continuum_cylinder.h"
 #include "verify/kinds/uniaxial.h"
 #include "verify/run/analysis.h"
@@ -172,4 +173,55 @@ TEST_CASE("the cylinder follows the 1-D chain under every history, at second ord
       previous = e;
     }
   }
+}
+
+TEST_CASE("a compare run lays DEM and both continuum routes side by side", "[history][compare]")
+{
+  verify::Deck d = verify::Deck::defaults("compare");
+  for (const auto &[k, v] : std::vector<std::pair<std::string, std::string>>{
+         {"sample/diameter", "0.008"}, {"sample/height", "0.008"}, {"balls/normal stiffness", "5e6"},
+         {"balls/shear stiffness", "5e6"}, {"platens/normal stiffness", "5e8"}, {"contact law/law", "burgers"},
+         {"contact law/normal maxwell viscosity", "500"}, {"contact law/normal kelvin viscosity", "500"},
+         {"contact law/shear maxwell viscosity", "500"}, {"contact law/shear kelvin viscosity", "500"},
+         {"bonds/normal strength", "1e9"}, {"bonds/shear strength", "1e9"}, {"loading/control", "strain rate"},
+         {"loading/strain rate", "1"}, {"loading/ramp time", "2e-4"}, {"loading/history", "relaxation"},
+         {"loading/hold strain", "0.001"}, {"loading/hold time", "0.002"}, {"measurement/fit window", "0, 0.001"},
+         {"comparison/continuum refinements", "1"}, {"comparison/continuum time steps", "40"}})
+    d.set(k, v);
+  const verify::CompareResult r = verify::run_compare(d, {"", 1, false});
+  REQUIRE_FALSE(r.status.fault);
+  const nlohmann::json &s = r.summary;
+  // The moduli come from this sample's own calibration and packing.
+  CHECK(s["moduli"]["young_dem_pa"].get<double>() > 0);
+  CHECK(s["moduli"]["non_affine_ratio"].get<double>() ==
+        Approx(s["moduli"]["young_dem_pa"].get<double>() / s["moduli"]["young_affine_pa"].get<double>()));
+  // Same-shape contacts (shear = normal here): nu_affine = (1 - r)/(4 + r) = 0.
+  CHECK(s["contacts"]["same_shape"].get<bool>());
+  CHECK(std::abs(s["moduli"]["poisson_affine"].get<double>()) < 1e-12);
+  // The lattice's coordination inside the measurement spheres: FCC, 12 at most.
+  CHECK(s["packing_measured"]["coordination_number"].get<double>() <= 12);
+  // Differences are DEM minus continuum, row by row.
+  const auto dem = r.series.column("axial_stress_dem_pa"), cal = r.series.column("axial_stress_calibrated_pa"),
+             diff = r.series.column("stress_difference_calibrated_pa");
+  for (std::size_t k = 0; k < dem.size(); ++k)
+    CHECK(diff[k] == dem[k] - cal[k]);
+  // The calibrated route at t = 0+ has the DEM's modulus, so the two start
+  // together; this small lattice stays within a fifth (its elastic platen
+  // contacts and oscillations are a larger share than on a packing: V23).
+  CHECK(s["difference_calibrated"]["relative"].get<double>() < 0.2);
+}
+
+TEST_CASE("a compare deck the continuum cannot take is refused with the one-line error", "[history][compare]")
+{
+  verify::Deck d = verify::Deck::defaults("compare");
+  d.set("contact law/law", "linear");
+  CHECK_THROWS_WITH(verify::parse_compare(d), Catch::Contains("contact law/law") && Catch::Contains("burgers"));
+  d = verify::Deck::defaults("compare");
+  d.set("contact law/law", "burgers");
+  d.set("loading/final strain", "0.3");
+  CHECK_THROWS_WITH(verify::parse_compare(d), Catch::Contains("loading/final strain") &&
+                                                Catch::Contains("small-strain"));
+  d.set("loading/final strain", "0.03");
+  d.set("measurement/fit window", "0, 0.005");
+  CHECK_THROWS_WITH(verify::parse_compare(d), Catch::Contains("fit window"));
 }

@@ -129,6 +129,14 @@ const std::vector<Check> &check_registry()
      "below 1 % on the finest mesh.",
      C::solution_verification, {T::B}, "Roache's GCI, Celik et al. (2008) J. Fluids Eng. 130:078001",
      &check_bonded_gci},
+    {"V23", "Viscoelastic network identity on a packing (DEM part)", "bulk",
+     "demvv's DEM bulk stress on a prepared packing with same-shape Burger's contacts, unbreakable bonds, no slip "
+     "and frictionless platens shall follow the calibrated continuum (E/K_m times the contact chain) within 5 % "
+     "under constant-rate, creep, relaxation and cyclic loading at a quasi-static rate.",
+     C::code_verification, {T::B},
+     "correspondence principle: a linear viscoelastic network of same-shape contacts is (E/K_m) x one contact "
+     "chain; the 1000-ball sample (--quick), the 6000-ball sample (--full)",
+     &check_packing_identity},
   };
   return checks;
 }

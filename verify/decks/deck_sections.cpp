@@ -61,6 +61,11 @@ LawSpec LawSpec::parse(const Deck &d)
 
 std::unique_ptr<dem::ContactModel> LawSpec::make(const RateScaling &rate) const
 {
+  return dem::make_contact_model(keyword, scaled_constants(rate));
+}
+
+dem::LawParameters LawSpec::scaled_constants(const RateScaling &rate) const
+{
   dem::LawParameters p = constants;
   for (const auto &[c, laws] : all_law_constants())
   {
@@ -68,7 +73,7 @@ std::unique_ptr<dem::ContactModel> LawSpec::make(const RateScaling &rate) const
     if (it != p.values.end())
       it->second *= c.scaling == dem::RateScaled::stiffness ? rate.stiffness_factor : rate.viscosity_factor;
   }
-  return dem::make_contact_model(keyword, p);
+  return p;
 }
 
 void declare_rate(DeckSchema &s)

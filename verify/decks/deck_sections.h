@@ -66,6 +66,8 @@ struct LawSpec
   static LawSpec parse(const Deck &d);
   /// The law with its stiffnesses and viscosities scaled by `rate`.
   std::unique_ptr<dem::ContactModel> make(const RateScaling &rate) const;
+  /// The constants with their stiffnesses and viscosities scaled by `rate`.
+  dem::LawParameters scaled_constants(const RateScaling &rate) const;
 };
 
 /// subsection "motion": gravity, damping, time step, neighbour skin.

@@ -1,6 +1,7 @@
 // THE table of deck kinds: one row per kind (keyword, one-line summary,
 // schema, parse, run).  To add a kind, write its file in verify/kinds/
 // (declare, a typed spec with its parse, run) and add one row here.
+#include "verify/kinds/compare.h"
 #include "verify/kinds/continuum_cylinder.h"
 #include "verify/kinds/continuum_mms.h"
 #include "verify/kinds/continuum_ode.h"
@@ -19,7 +20,8 @@ const std::vector<DeckKind> &deck_kinds()
     {"prepare", "numerical sample preparation (thesis ch. 5): a dense random bonded packing saved to a sample file",
      &declare_prepare, [](const Deck &d) { parse_prepare(d); },
      [](const Deck &d, const RunOptions &o) { return run_prepare(d, o).status; }},
-    {"uniaxial", "constant-strain-rate compression of a bonded cylinder between platens", &declare_uniaxial,
+    {"uniaxial", "compression of a bonded cylinder between platens: constant rate, creep, relaxation or cyclic",
+     &declare_uniaxial,
      [](const Deck &d) { parse_uniaxial(d); },
      [](const Deck &d, const RunOptions &o) { return run_uniaxial(d, o).status; }},
     {"burgers_ode", "one Burger's chain (contact or material point) under a prescribed history, SUNDIALS CVODE "
@@ -29,6 +31,9 @@ const std::vector<DeckKind> &deck_kinds()
     {"cylinder", "viscoelastic continuum cylinder (deal.II) compressed between frictionless or bonded platens",
      &declare_cylinder, [](const Deck &d) { parse_cylinder(d); },
      [](const Deck &d, const RunOptions &o) { return run_cylinder(d, o).status; }},
+    {"compare", "DEM bulk beside the continuum cylinder built from the same contacts, same sample and history",
+     &declare_compare, [](const Deck &d) { parse_compare(d); },
+     [](const Deck &d, const RunOptions &o) { return run_compare(d, o).status; }},
     {"mms", "manufactured-solution convergence study of the continuum cylinder in space or time", &declare_mms,
      [](const Deck &d) { parse_mms(d); }, [](const Deck &d, const RunOptions &o) { return run_mms_deck(d, o).status; }},
   };

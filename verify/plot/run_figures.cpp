@@ -191,6 +191,37 @@ void cylinder_curves(const RunTable &s, std::vector<Figure> &out)
               {"closed form (homogeneous)", "radial_strain_closed_form", 100, CurveStyle::dashed}});
 }
 
+/// A compare run: DEM, calibrated and affine continuum side by side.
+void compare_figures(const RunTable &s, std::vector<Figure> &out)
+{
+  const auto sides = [](const std::string &quantity, const std::string &unit, double scale) {
+    return std::vector<Line>{{"DEM", quantity + "_dem" + unit, scale},
+                             {"continuum, calibrated", quantity + "_calibrated" + unit, scale, CurveStyle::dashed},
+                             {"continuum, affine", quantity + "_affine" + unit, scale, CurveStyle::dashed}};
+  };
+  add_figure(out, s, {"stress_time", "Axial stress against time", "time [s]", "axial stress [MPa]"}, "time_s", 1,
+             sides("axial_stress", "_pa", 1e-6));
+  add_figure(out, s, {"strain_time", "Axial strain against time", "time [s]", "axial strain [%]"}, "time_s", 1,
+             sides("axial_strain", "", 100));
+  add_figure(out, s, {"radial_strain", "Radial strain against time", "time [s]", "radial strain [%]"}, "time_s", 1,
+             sides("radial_strain", "", 100));
+  add_figure(out, s, {"difference", "DEM minus continuum", "time [s]", "axial stress difference [MPa]"}, "time_s", 1,
+             {{"DEM - calibrated", "stress_difference_calibrated_pa", 1e-6},
+              {"DEM - affine", "stress_difference_affine_pa", 1e-6, CurveStyle::dashed}});
+  if (!s.has("axial_strain_dem"))
+    return;
+  Figure f;
+  f.name = "stress_strain";
+  f.title = "Axial stress against axial strain";
+  f.x_label = "axial strain [%]";
+  f.y_label = "axial stress [MPa]";
+  for (const auto &[title, side] : std::vector<std::pair<std::string, std::string>>{
+         {"DEM", "dem"}, {"continuum, calibrated", "calibrated"}, {"continuum, affine", "affine"}})
+    f.curves.push_back(column_curve(title, s.from_plots, "axial_strain_" + side, "axial_stress_" + side + "_pa", 100,
+                                    1e-6, side == "dem" ? CurveStyle::line : CurveStyle::dashed));
+  out.push_back(std::move(f));
+}
+
 void mesh_figure(const std::string &dir, std::vector<Figure> &out)
 {
   if (!exists(dir + "/mesh.csv"))
@@ -298,6 +329,8 @@ std::vector<Figure> run_figures(const std::string &run_dir)
     }
     else if (kind == "mms")
       mms_figures(run_dir, summary, out);
+    else if (kind == "compare")
+      compare_figures(RunTable(run_dir, "compare.csv"), out);
     return out;
   }
   catch (const nlohmann::json::exception &e)
