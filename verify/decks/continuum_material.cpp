@@ -80,7 +80,11 @@ void declare_continuum_material(DeckSchema &s)
   s.enter("material");
   s.choice("model", "same shape", {"same shape", "deviatoric"},
            "Volumetric response of the Burger's solid: 'same shape' (bulk chain = K/G x shear chain, constant "
-           "Poisson's ratio) or 'deviatoric' (Burger's in shear, elastic bulk modulus E0 / (3 (1 - 2 nu))).");
+           "Poisson's ratio; the uniaxial chain is the Young chain as typed) or 'deviatoric' (Burger's in shear, "
+           "elastic bulk modulus E0 / (3 (1 - 2 nu))).  With 'deviatoric' the uniaxial response is NOT the typed "
+           "Young-type chain: only E0 carries over, and the Maxwell viscosity, Kelvin modulus and Kelvin viscosity "
+           "act 3 / (2 (1 + nu)) times as typed (1.15 at nu = 0.3); summary.json gives the chain that results "
+           "under material/moduli/uniaxial_chain, which is the one to compare with a DEM bulk curve.");
   s.choice("source", "direct", {"direct", "affine", "calibrated"},
            "Where the moduli come from: 'direct' (subsection direct), 'affine' (contact constants and an affine "
            "packing, subsections contact and affine), 'calibrated' (contact constants and an elastic run's E and "
@@ -177,7 +181,14 @@ nlohmann::json describe_solid(const continuum::BurgersSolid &solid)
                       {"poisson_ratio", solid.poisson},
                       {"bulk_modulus_pa", solid.bulk_modulus()}};
   if (solid.bulk == continuum::BulkResponse::same_shape)
+  {
     j["bulk_chain"] = chain_json(solid.bulk_chain(), "pa", "pa_s");
+    j["uniaxial_chain_note"] = "same shape: the uniaxial chain is the Young chain";
+  }
+  else
+    j["uniaxial_chain_note"] = "deviatoric: the uniaxial chain is E0 with 3 / (2 (1 + nu)) times the Young-type "
+                               "viscosities and Kelvin modulus (the shear chain x 3); the typed Young-type chain is "
+                               "not the uniaxial response";
   return j;
 }
 } // namespace verify
