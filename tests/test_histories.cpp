@@ -186,7 +186,8 @@ TEST_CASE("a compare run lays DEM and both continuum routes side by side", "[his
          {"bonds/normal strength", "1e9"}, {"bonds/shear strength", "1e9"}, {"loading/control", "strain rate"},
          {"loading/strain rate", "1"}, {"loading/ramp time", "2e-4"}, {"loading/history", "relaxation"},
          {"loading/hold strain", "0.001"}, {"loading/hold time", "0.002"}, {"measurement/fit window", "0, 0.001"},
-         {"comparison/continuum refinements", "1"}, {"comparison/continuum time steps", "40"}})
+         {"comparison/continuum refinements", "1"}, {"comparison/continuum time steps", "40"},
+         {"comparison/dem time step study", "true"}})
     d.set(k, v);
   const verify::CompareResult r = verify::run_compare(d, {"", 1, false});
   REQUIRE_FALSE(r.status.fault);
@@ -209,6 +210,9 @@ TEST_CASE("a compare run lays DEM and both continuum routes side by side", "[his
   // together; this small lattice stays within a fifth (its elastic platen
   // contacts and oscillations are a larger share than on a packing: V23).
   CHECK(s["difference_calibrated"]["relative"].get<double>() < 0.2);
+  // The DEM side's time-step sensitivity: the same test at half the safety.
+  CHECK(s["uncertainty"]["dem_time_step"]["time_step_safety"].get<double>() == 0.4);
+  CHECK(s["uncertainty"]["dem_time_step"]["largest_relative_difference"].get<double>() < 0.05);
 }
 
 TEST_CASE("a compare deck the continuum cannot take is refused with the one-line error", "[history][compare]")

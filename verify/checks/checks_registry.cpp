@@ -132,7 +132,8 @@ const std::vector<Check> &check_registry()
     {"V23", "Viscoelastic network identity on a packing (DEM part)", "bulk",
      "demvv's DEM bulk stress on a prepared packing with same-shape Burger's contacts, unbreakable bonds, no slip "
      "and frictionless platens shall follow the calibrated continuum (E/K_m times the contact chain) within 5 % "
-     "under constant-rate, creep, relaxation and cyclic loading at a quasi-static rate.",
+     "under constant-rate, creep, relaxation and cyclic loading at a quasi-static rate; with modified Burger's "
+     "contacts, outside the identity, the two shall part visibly (model form; bonded platens are reported).",
      C::code_verification, {T::B},
      "correspondence principle: a linear viscoelastic network of same-shape contacts is (E/K_m) x one contact "
      "chain; the 1000-ball sample (--quick), the 6000-ball sample (--full)",

@@ -30,7 +30,10 @@ void LoadingHistory::declare(DeckSchema &s)
          "Cyclic: amplitude of the sinusoid about the mean strain (at most the mean strain, so the platens "
          "stay in compression).",
          true);
-  s.real("frequency", 100, 0, inf, "Hz", "Cyclic: frequency of the sinusoid.", true);
+  s.real("frequency", 100, 0, inf, "Hz",
+         "Cyclic: frequency f of the sinusoid.  With 2 pi f a equal to the loading rate (a the amplitude) the "
+         "platens enter the cycles at the ramp's speed; otherwise their speed jumps there.",
+         true);
   s.integer("cycles", 2, 1, 1000000, "Cyclic: number of cycles after the mean strain is reached.");
   s.real("servo relaxation", 0.5, 0, inf, "-",
          "Creep in DEM: alpha of the platen servo (thesis eq. 3.15), the fraction of the stress error one step "
