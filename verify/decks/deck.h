@@ -48,8 +48,12 @@ public:
   virtual void choice(const std::string &name, const std::string &value,
                       const std::vector<std::string> &options, const std::string &help) = 0;
   virtual void flag(const std::string &name, bool value, const std::string &help) = 0;
-  /// Free text (titles, file names); `unit` documents what it holds.
+  /// Free text (titles, keywords).
   virtual void text(const std::string &name, const std::string &value, const std::string &help) = 0;
+  /// A file name, relative to the deck's folder or absolute (read with
+  /// Deck::file).  The resolved deck writes it absolute, so that a run
+  /// directory's deck.prm runs again from any folder.
+  virtual void file(const std::string &name, const std::string &value, const std::string &help) = 0;
   /// Three comma-separated reals.
   virtual void vector3(const std::string &name, const std::string &value, const std::string &unit,
                        const std::string &help) = 0;
@@ -145,7 +149,8 @@ public:
   /// Throws a DeckError naming this deck, the key and its value.
   [[noreturn]] void fail(const std::string &key, const std::string &expected) const;
 
-  /// The resolved deck in .prm form (every entry, declaration order).
+  /// The resolved deck in .prm form (every entry, declaration order; file
+  /// names absolute, so that it reads the same files from any folder).
   std::string resolved() const;
   /// The documented defaults in .prm form (help, unit, allowed values).
   std::string documented() const;

@@ -30,7 +30,7 @@ void declare_uniaxial(DeckSchema &s)
   s.choice("source", "lattice", {"lattice", "file"},
            "Where the balls come from: 'file' loads a prepared sample (thesis ch. 5); 'lattice' builds a "
            "regular lattice cylinder, a verification sample only.");
-  s.text("file", "",
+  s.file("file", "",
          "For source = file: a sample file (.json) written by a prepare run, or a prepare deck (.prm) whose "
          "sample is prepared on first use and cached under runs/samples/; relative to this deck.");
   s.choice("lattice", "fcc", {"fcc", "sc"}, "For source = lattice: face-centred or simple cubic.");
