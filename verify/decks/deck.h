@@ -74,7 +74,9 @@ class Deck;
 /// One deck kind: its keyword, what it is for (one line), its schema, the
 /// parse into its typed spec (validation only: throws DeckError, runs
 /// nothing) and the run.  `demvv run`, `demvv defaults` and `--help` all
-/// read this one table.
+/// read this one table.  A kind that runs on every rank of an MPI job
+/// (`mpirun -np N demvv run`) says so: its run directory is then claimed on
+/// rank 0 alone, and every rank takes rank 0's verdict before any writes.
 struct DeckKind
 {
   std::string_view name;
@@ -82,6 +84,7 @@ struct DeckKind
   void (*declare)(DeckSchema &);
   void (*parse)(const Deck &);
   RunStatus (*run)(const Deck &, const RunOptions &);
+  bool on_every_mpi_rank = false;
 };
 
 /// THE table of deck kinds (verify/kinds/deck_kinds.cpp).

@@ -28,9 +28,10 @@ const std::vector<DeckKind> &deck_kinds()
      [](const Deck &d, const RunOptions &o) { return run_burgers_ode(d, o).status; }},
     {"cylinder", "viscoelastic continuum cylinder (deal.II) compressed between frictionless or bonded platens",
      &declare_cylinder, [](const Deck &d) { parse_cylinder(d); },
-     [](const Deck &d, const RunOptions &o) { return run_cylinder(d, o).status; }},
+     [](const Deck &d, const RunOptions &o) { return run_cylinder(d, o).status; }, true},
     {"mms", "manufactured-solution convergence study of the continuum cylinder in space or time", &declare_mms,
-     [](const Deck &d) { parse_mms(d); }, [](const Deck &d, const RunOptions &o) { return run_mms_deck(d, o).status; }},
+     [](const Deck &d) { parse_mms(d); }, [](const Deck &d, const RunOptions &o) { return run_mms_deck(d, o).status; },
+     true},
   };
   return kinds;
 }
