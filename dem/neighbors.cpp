@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace dem
 {
@@ -38,21 +39,26 @@ void NeighborList::rebuild(const ParticleStore &particles)
   }
   // Cells at least one interaction range wide, so neighbours of a ball are
   // in the 27 cells around it; coarsened if stray balls stretch the box.
-  double h = 2.0 * particles.max_radius() + skin_;
+  // Cell counts are reckoned in floating point and cast to integers only
+  // once they are known to fit: balls at huge coordinates (1e300 m) coarsen
+  // the grid, and a box no double can measure (balls at -1e308 and 1e308,
+  // or a NaN position) gets a single cell.
+  double h = std::max(2.0 * particles.max_radius() + skin_, std::numeric_limits<double>::min());
   const Vec3 extent = (hi - lo).cwiseMax(h);
-  std::array<long, 3> dims{};
-  const long max_cells = 8L * n + 64;
-  for (;;)
+  const double max_cells = 8.0 * double(n) + 64;
+  const auto along = [&](int k) { return std::max(1.0, std::floor(extent[k] / h)); };
+  std::array<long, 3> dims{1, 1, 1};
+  if (extent.allFinite())
   {
+    while (along(0) * along(1) * along(2) > max_cells)
+      h *= 1.25;
     for (int k = 0; k < 3; ++k)
-      dims[k] = std::max(1L, static_cast<long>(extent[k] / h));
-    if (dims[0] * dims[1] * dims[2] <= max_cells)
-      break;
-    h *= 1.25;
+      dims[k] = static_cast<long>(along(k));
   }
   const long cells = dims[0] * dims[1] * dims[2];
   const auto coord = [&](const Vec3 &x, int k) {
-    return std::min(dims[k] - 1, static_cast<long>((x[k] - lo[k]) / h));
+    const double c = (x[k] - lo[k]) / h; // >= 0, or NaN
+    return c < double(dims[k] - 1) ? static_cast<long>(c) : dims[k] - 1;
   };
   const auto cell_id = [&](long cx, long cy, long cz) { return (cz * dims[1] + cy) * dims[0] + cx; };
 

@@ -141,7 +141,9 @@ TEST_CASE("a failing ODE run stops with exit code 3 and keeps its outputs", "[co
   REQUIRE(r.series.rows() >= 1);
   CHECK(r.series.row(0)[0] == 0.0);
   CHECK(read_text(dir + "/summary.json").find("numerical fault") != std::string::npos);
-  CHECK(verify::command_run(deck, {}, {dir, 0, false}) == 3);
+  verify::RunOptions again{dir, 0, false};
+  again.replace = true;
+  CHECK(verify::command_run(deck, {}, again) == 3);
 }
 
 TEST_CASE("frictionless platens: every mesh gives the material point to solver tolerance", "[continuum][fem]")
@@ -349,6 +351,8 @@ TEST_CASE("two MPI ranks give the serial answer of a bonded cylinder", "[continu
                            " --set 'discretisation/time steps=5' 2> /dev/null";
   const std::string launcher = std::string(DEMVV_MPIRUN) + (getuid() == 0 ? " --allow-run-as-root" : "") +
                                " --oversubscribe -np 2 ";
+  fs::remove_all(dir / "serial");
+  fs::remove_all(dir / "ranks");
   REQUIRE(std::system((std::string(DEMVV_EXECUTABLE) + " run " + deck + " --out " + (dir / "serial").string() + sets)
                         .c_str()) == 0);
   REQUIRE(std::system((launcher + DEMVV_EXECUTABLE + " run " + deck + " --out " + (dir / "ranks").string() + sets)

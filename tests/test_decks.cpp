@@ -132,10 +132,31 @@ TEST_CASE("every kind's documented defaults read back as a deck", "[deck]")
   for (const verify::DeckKind &k : verify::deck_kinds())
   {
     INFO("kind " << k.name);
+    // Both read from one folder, so that their file names resolve alike.
     const verify::Deck d = verify::Deck::defaults(std::string(k.name));
-    const auto path = write_deck(std::string(k.name) + "_defaults.prm", d.documented());
-    CHECK(verify::Deck::from_file(path).resolved() == d.resolved());
+    const auto documented = write_deck(std::string(k.name) + "_defaults.prm", d.documented());
+    const auto resolved = write_deck(std::string(k.name) + "_resolved.prm", d.resolved());
+    CHECK(verify::Deck::from_file(documented).resolved() == verify::Deck::from_file(resolved).resolved());
   }
+}
+
+TEST_CASE("the resolved deck names its files absolute and reads the same files from another folder", "[deck]")
+{
+  const fs::path folder = fs::temp_directory_path() / "demvv_test_decks" / "relative";
+  fs::create_directories(folder);
+  fs::copy_file(data + "/two_balls.csv", folder / "balls.csv", fs::copy_options::overwrite_existing);
+  std::ofstream(folder / "case.prm") << "set kind = scene\nsubsection particles\n  set file = balls.csv\nend\n";
+  const verify::Deck deck = verify::Deck::from_file((folder / "case.prm").string());
+  const std::string absolute = fs::canonical(folder / "balls.csv").string();
+  CHECK(deck.resolved().find("set file = " + absolute + "\n") != std::string::npos);
+  CHECK(deck.text("particles/file") == "balls.csv"); // errors quote the deck as written
+  const fs::path elsewhere = fs::temp_directory_path() / "demvv_test_decks" / "elsewhere";
+  fs::create_directories(elsewhere);
+  std::ofstream(elsewhere / "deck.prm") << deck.resolved();
+  const verify::Deck again = verify::Deck::from_file((elsewhere / "deck.prm").string());
+  CHECK(again.file("particles/file") == absolute);
+  CHECK(again.resolved() == deck.resolved());
+  CHECK(verify::run_scene(again, {}).series.rows() == verify::run_scene(deck, {}).series.rows());
 }
 
 TEST_CASE("bad Burger's and rate entries are refused with one line naming the key", "[deck][burgers]")

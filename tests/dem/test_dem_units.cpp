@@ -78,6 +78,30 @@ TEST_CASE("contact history survives neighbour rebuilds, bonded pairs stay listed
   CHECK(sim.contacts().find(0, 1) == nullptr);
 }
 
+TEST_CASE("the neighbour grid takes balls at huge coordinates without casting them out of range", "[dem][neighbors]")
+{
+  // Under UBSan (float-cast-overflow, the sanitizer build of CI) a cell
+  // index cast from 1e300 / h is an error; the pairs must still be the
+  // brute-force ones.
+  const auto pairs_of = [](const std::vector<Vec3> &centres) {
+    dem::ParticleStore p;
+    for (const Vec3 &x : centres)
+    {
+      dem::BallSpec b;
+      b.position = x;
+      b.radius = 1e-3;
+      p.add(b);
+    }
+    dem::NeighborList list(1e-4);
+    list.rebuild(p);
+    CHECK(list.pairs() == dem::brute_force_pairs(p, 1e-4));
+    return list.pairs().size();
+  };
+  CHECK(pairs_of({Vec3(0, 0, 0), Vec3(1.5e-3, 0, 0), Vec3(1e300, 0, 0), Vec3(1e300, 1.5e-3, 0)}) == 2);
+  CHECK(pairs_of({Vec3(-1e308, 0, 0), Vec3(1e308, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 1.5e-3)}) == 1);
+  CHECK(pairs_of({Vec3(0, 0, 0), Vec3(0, 1e-300, 0), Vec3(0, 0, 1e300)}) == 1);
+}
+
 TEST_CASE("a bond break is logged with the trial forces that broke it", "[dem][bonds]")
 {
   // Two touching balls bonded with phi_n = 0.1 N, pulled apart at 2 v: the

@@ -47,7 +47,7 @@ int command_bench(const BenchOptions &o)
   if (!o.sample.empty())
   {
     TestSample sample =
-      open_test_sample(load_or_prepare_sample(o.sample, "runs/samples"), ball, platen, std::move(model), settings);
+      open_test_sample(load_or_prepare_sample(o.sample), ball, platen, std::move(model), settings);
     sim_ptr = std::move(sample.sim);
     cell = std::move(sample.cell);
     source = "prepared sample";

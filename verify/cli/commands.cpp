@@ -8,6 +8,10 @@
 #include "verify/report/report.h"
 #include "verify/run/dem_driver.h"
 
+#include "continuum/cylinder.h"
+
+#include <mpi.h>
+
 #include <csignal>
 #include <iostream>
 
@@ -64,6 +68,45 @@ void draw_run_figures(const std::string &run_dir, bool list_drawn)
   if (!missing.empty())
     std::cerr << "demvv: figures not drawn: " << missing << "\n";
 }
+/// Runs `claim` (which may throw a one-line error) on MPI rank 0 alone when
+/// a kind runs on every rank, and gives every rank its verdict: all go on,
+/// or all throw the same error (DeckError, exit 2; OutputError, exit 4).
+/// No rank goes on before rank 0 is done, so none writes into a directory
+/// that rank 0 is still emptying, and no rank waits for one that has quit.
+void on_rank_zero_for_all(bool every_rank, const std::function<void()> &claim)
+{
+  if (!every_rank)
+  {
+    claim();
+    return;
+  }
+  int code = 0;
+  std::string message;
+  if (continuum::parallel_info().rank == 0)
+    try
+    {
+      claim();
+    }
+    catch (const OutputError &e)
+    {
+      code = 4;
+      message = e.what();
+    }
+    catch (const std::exception &e)
+    {
+      code = 2;
+      message = e.what();
+    }
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  message.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(message.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  if (code == 4)
+    throw OutputError(message);
+  if (code != 0)
+    throw DeckError(message);
+}
 } // namespace
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
@@ -75,6 +118,9 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   const DeckKind *kind = find_deck_kind(deck.kind());
   if (o.resume)
     check_resumable(o.out_dir, deck);
+  else
+    on_rank_zero_for_all(kind->on_every_mpi_rank,
+                         [&] { claim_run_directory(o.out_dir, o.replace, [&] { kind->parse(deck); }); });
   RunStatus status;
   try
   {

@@ -1,6 +1,6 @@
 // demvv: the command-line entry point.
 //
-//   demvv run DECK [--out DIR] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
+//   demvv run DECK [--out DIR [--replace]] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
 //   demvv defaults KIND
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
 //   demvv bench [--particles N] [--steps N] [--threads N]
@@ -43,7 +43,11 @@ int main(int argc, char **argv)
   std::string resume_dir;
   auto *run = app.add_subcommand("run", "Run a deck and write its run directory");
   run->add_option("DECK", deck_path, "Deck file (.prm or .json)")->required();
-  run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>)");
+  run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>): a new or empty directory");
+  bool replace = false;
+  run->add_flag("--replace", replace,
+                "Replace the run in a non-empty run directory whole (its old files removed once the deck is read "
+                "and checked)");
   run->add_option("--set", overrides, "Override a deck entry: SECTION/KEY=VALUE (repeatable)");
   run->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS, else the cores no other process is busy on)")
     ->check(CLI::Range(1, 1024));
@@ -119,9 +123,13 @@ int main(int argc, char **argv)
       if (!resume_dir.empty() && !out_dir.empty() && out_dir != resume_dir)
         throw verify::DeckError("--resume '" + resume_dir + "' and --out '" + out_dir +
                                 "': a resumed run continues in its own directory: expected no --out");
+      if (!resume_dir.empty() && replace)
+        throw verify::DeckError("--resume '" + resume_dir +
+                                "' and --replace: a resumed run continues the files in its directory: expected one "
+                                "of them");
       return verify::command_run(deck_path, overrides,
                                  {resume_dir.empty() ? out_dir : resume_dir, threads, !quiet, !resume_dir.empty(),
-                                  pause_after});
+                                  pause_after, replace});
     }
     if (defaults->parsed())
       return verify::command_defaults(kind);

@@ -30,7 +30,7 @@ std::vector<std::string> cells(const std::string &line)
 }
 } // namespace
 
-CsvTable CsvTable::read(const std::string &path)
+CsvTable CsvTable::read(const std::string &path, Values values)
 {
   CsvTable t;
   t.path_ = path;
@@ -58,7 +58,7 @@ CsvTable CsvTable::read(const std::string &path)
       char *end = nullptr;
       const double v = std::strtod(c[k].c_str(), &end);
       const bool number = !c[k].empty() && *end == '\0';
-      if (!number || !std::isfinite(v))
+      if (!number || (values == Values::finite && !std::isfinite(v)))
         throw DeckError(path + ":" + std::to_string(line) + ": column '" + t.header_[k] + "' has value '" +
                         escaped(c[k]) + "': expected a " + (number ? "finite number" : "number"));
       row.push_back(v);

@@ -2,9 +2,11 @@
 //
 // The first non-comment line is the header; every later non-empty line must
 // have one finite number per column (nan and inf are refused: no column of
-// any table means them).  Lines starting with '#' are comments.  Any
-// problem is a DeckError naming the file, the line and the column.  The
+// any table a deck names means them).  Lines starting with '#' are comments.
+// Any problem is a DeckError naming the file, the line and the column.  The
 // file must be a regular file of at most max_table_bytes (verify/io/input.h).
+// A run's own outputs, read back to draw its figures, may hold nan where a
+// value is undefined (the order of accuracy of a study's first level).
 #pragma once
 
 #include <string>
@@ -15,7 +17,14 @@ namespace verify
 class CsvTable
 {
 public:
-  static CsvTable read(const std::string &path);
+  /// What a value may be: a finite number (tables decks name), or any
+  /// number, nan and inf included (a run's own outputs).
+  enum class Values
+  {
+    finite,
+    any_number
+  };
+  static CsvTable read(const std::string &path, Values values = Values::finite);
 
   const std::string &path() const { return path_; }
   std::size_t rows() const { return rows_.size(); }

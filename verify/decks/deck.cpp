@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -105,6 +106,7 @@ struct Deck::Impl final : DeckSchema
     bool positive = false; // real with an exclusive lower bound
     double min = 0;
     bool numeric = false;  // real, vector or list of reals: every item must be a normal double
+    bool file = false;     // a file name, relative to the deck's folder unless absolute
   };
 
   /// A repeated section: where it may appear and how an instance is declared.
@@ -192,6 +194,12 @@ struct Deck::Impl final : DeckSchema
   void text(const std::string &name, const std::string &value, const std::string &help) override
   {
     add(name, value, std::make_unique<Patterns::Anything>(), "any text", help);
+  }
+  void file(const std::string &name, const std::string &value, const std::string &help) override
+  {
+    add(name, value, std::make_unique<Patterns::Anything>(), "a file name (relative to the deck's folder)",
+        help + " [file, relative to the deck's folder unless absolute]");
+    entries[full(name)].file = true;
   }
   void vector3(const std::string &name, const std::string &value, const std::string &unit,
                const std::string &help) override
@@ -299,6 +307,12 @@ struct Deck::Impl final : DeckSchema
     if (!ok)
       reject(o, "key '" + key + "' has value '" + value + "': expected " + e.expected);
     e.value = value;
+    store(key, value);
+  }
+
+  /// Gives deal.II's copy of the entry `key` ("section/key") its value.
+  void store(const std::string &key, const std::string &value)
+  {
     const auto parts = split(key, '/');
     for (std::size_t k = 0; k + 1 < parts.size(); ++k)
       prm.enter_subsection(parts[k]);
@@ -565,6 +579,21 @@ std::string Deck::file(const std::string &key) const
   return directory() + "/" + f;
 }
 
+namespace
+{
+/// The absolute form of a file name read by Deck::file (symbolic links and
+/// ".." resolved as the system would, where the path exists).
+std::string absolute_file(const std::string &file)
+{
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
+  if (ec)
+    return file;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, ec);
+  return (ec ? absolute.lexically_normal() : canonical).string();
+}
+} // namespace
+
 void Deck::fail(const std::string &key, const std::string &expected) const
 {
   fail_key(impl_->path, key, impl_->at(key).value, expected);
@@ -572,11 +601,22 @@ void Deck::fail(const std::string &key, const std::string &expected) const
 
 std::string Deck::resolved() const
 {
+  // File names are printed absolute, then given back their text as written
+  // (what errors and descriptions quote).
+  std::vector<std::pair<std::string, std::string>> relative;
+  for (const auto &[key, e] : impl_->entries)
+    if (e.file && !e.value.empty() && e.value.front() != '/' && !impl_->path.empty())
+    {
+      relative.emplace_back(key, e.value);
+      impl_->store(key, absolute_file(file(key)));
+    }
   std::ostringstream out;
   out << "# demvv resolved deck: every entry, defaults filled in (SI units).\n";
   impl_->prm.print_parameters(out, static_cast<dealii::ParameterHandler::OutputStyle>(
                                      dealii::ParameterHandler::ShortPRM |
                                      dealii::ParameterHandler::KeepDeclarationOrder));
+  for (const auto &[key, value] : relative)
+    impl_->store(key, value);
   return out.str();
 }
 

@@ -48,8 +48,12 @@ public:
   virtual void choice(const std::string &name, const std::string &value,
                       const std::vector<std::string> &options, const std::string &help) = 0;
   virtual void flag(const std::string &name, bool value, const std::string &help) = 0;
-  /// Free text (titles, file names); `unit` documents what it holds.
+  /// Free text (titles, keywords).
   virtual void text(const std::string &name, const std::string &value, const std::string &help) = 0;
+  /// A file name, relative to the deck's folder or absolute (read with
+  /// Deck::file).  The resolved deck writes it absolute, so that a run
+  /// directory's deck.prm runs again from any folder.
+  virtual void file(const std::string &name, const std::string &value, const std::string &help) = 0;
   /// Three comma-separated reals.
   virtual void vector3(const std::string &name, const std::string &value, const std::string &unit,
                        const std::string &help) = 0;
@@ -70,7 +74,9 @@ class Deck;
 /// One deck kind: its keyword, what it is for (one line), its schema, the
 /// parse into its typed spec (validation only: throws DeckError, runs
 /// nothing) and the run.  `demvv run`, `demvv defaults` and `--help` all
-/// read this one table.
+/// read this one table.  A kind that runs on every rank of an MPI job
+/// (`mpirun -np N demvv run`) says so: its run directory is then claimed on
+/// rank 0 alone, and every rank takes rank 0's verdict before any writes.
 struct DeckKind
 {
   std::string_view name;
@@ -78,6 +84,7 @@ struct DeckKind
   void (*declare)(DeckSchema &);
   void (*parse)(const Deck &);
   RunStatus (*run)(const Deck &, const RunOptions &);
+  bool on_every_mpi_rank = false;
 };
 
 /// THE table of deck kinds (verify/kinds/deck_kinds.cpp).
@@ -145,7 +152,8 @@ public:
   /// Throws a DeckError naming this deck, the key and its value.
   [[noreturn]] void fail(const std::string &key, const std::string &expected) const;
 
-  /// The resolved deck in .prm form (every entry, declaration order).
+  /// The resolved deck in .prm form (every entry, declaration order; file
+  /// names absolute, so that it reads the same files from any folder).
   std::string resolved() const;
   /// The documented defaults in .prm form (help, unit, allowed values).
   std::string documented() const;

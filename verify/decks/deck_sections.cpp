@@ -202,7 +202,7 @@ void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool te
   help.back() = '.';
   s.choice("install", modes.front(), modes, help);
   if (std::find(modes.begin(), modes.end(), "list") != modes.end())
-    s.text("list file", "",
+    s.file("list file", "",
            "CSV of bonded pairs for install = list: columns first,second (ball indices from 0) and "
            "optionally normal_strength_n, shear_strength_n [N].");
   s.real("normal strength", 31.3, 0, inf, "N",

@@ -199,6 +199,9 @@ nlohmann::json gap_json(const Gap &g, const Series &s)
 
 CompareResult run_compare(const CompareSpec &spec, const RunOptions &options)
 {
+  if (continuum::parallel_info().ranks > 1)
+    throw DeckError(spec.dem.deck.path + ": a compare deck runs in one process (OpenMP threads for the DEM, a small "
+                                         "continuum): expected no mpirun");
   const int threads = apply_threads(options);
   CompareResult out;
   std::unique_ptr<RunDirectory> dir;

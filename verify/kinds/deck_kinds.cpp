@@ -30,12 +30,13 @@ const std::vector<DeckKind> &deck_kinds()
      [](const Deck &d, const RunOptions &o) { return run_burgers_ode(d, o).status; }},
     {"cylinder", "viscoelastic continuum cylinder (deal.II) compressed between frictionless or bonded platens",
      &declare_cylinder, [](const Deck &d) { parse_cylinder(d); },
-     [](const Deck &d, const RunOptions &o) { return run_cylinder(d, o).status; }},
+     [](const Deck &d, const RunOptions &o) { return run_cylinder(d, o).status; }, true},
     {"compare", "DEM bulk beside the continuum cylinder built from the same contacts, same sample and history",
      &declare_compare, [](const Deck &d) { parse_compare(d); },
      [](const Deck &d, const RunOptions &o) { return run_compare(d, o).status; }},
     {"mms", "manufactured-solution convergence study of the continuum cylinder in space or time", &declare_mms,
-     [](const Deck &d) { parse_mms(d); }, [](const Deck &d, const RunOptions &o) { return run_mms_deck(d, o).status; }},
+     [](const Deck &d) { parse_mms(d); }, [](const Deck &d, const RunOptions &o) { return run_mms_deck(d, o).status; },
+     true},
   };
   return kinds;
 }

@@ -6,6 +6,7 @@
 #include "verify/io/paraview.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -185,7 +186,16 @@ PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
   return result;
 }
 
-SampleFile load_or_prepare_sample(const std::string &path, const std::string &cache_dir)
+std::string sample_cache_dir(const std::string &deck_path)
+{
+  const char *cache = std::getenv("DEMVV_CACHE");
+  if (cache && *cache)
+    return cache;
+  const auto slash = deck_path.find_last_of('/');
+  return (slash == std::string::npos ? std::string(".") : deck_path.substr(0, slash)) + "/samples";
+}
+
+SampleFile load_or_prepare_sample(const std::string &path)
 {
   const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
   if (!is_deck)
@@ -200,7 +210,7 @@ SampleFile load_or_prepare_sample(const std::string &path, const std::string &ca
   // Keyed by the resolved deck and the procedure's revision, so that a
   // changed procedure never serves a stale sample.
   const std::string key = deck.resolved() + "\npreparation revision " + std::to_string(dem::preparation_revision);
-  const std::string dir = cache_dir + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
+  const std::string dir = sample_cache_dir(path) + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
   if (std::filesystem::exists(dir + "/sample.json"))
   {
     SampleFile sample = read_sample(dir + "/sample.json");

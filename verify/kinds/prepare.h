@@ -5,7 +5,9 @@
 // (sample_file.h) with the preparation report, a ParaView view of the
 // sample, summary.json and deck.prm.  Uniaxial decks load the sample file,
 // or name the prepare deck itself: the sample is then prepared once and
-// cached under runs/samples/ by the deck's hash.
+// cached beside that deck, in samples/<deck>-<hash>/ (keyed by the resolved
+// deck and the preparation's revision), whatever the current folder; the
+// environment variable DEMVV_CACHE, when set, names another folder for it.
 #pragma once
 
 #include "verify/decks/deck.h"
@@ -30,7 +32,11 @@ dem::PackingSettings parse_prepare(const Deck &deck);
 /// the run directory (sample.json among it).
 PrepareResult run_prepare(const Deck &deck, const RunOptions &options);
 
+/// The folder where the samples of prepare decks are cached: $DEMVV_CACHE
+/// when set and not empty, else samples/ beside the deck at `deck_path`.
+std::string sample_cache_dir(const std::string &deck_path);
+
 /// Reads a sample: a .json sample file, or a prepare deck (.prm) whose
-/// sample is prepared on first use and cached under cache_dir.
-SampleFile load_or_prepare_sample(const std::string &path, const std::string &cache_dir);
+/// sample is prepared on first use and cached in sample_cache_dir().
+SampleFile load_or_prepare_sample(const std::string &path);
 } // namespace verify

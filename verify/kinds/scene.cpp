@@ -52,7 +52,7 @@ void declare_scene(DeckSchema &s)
 {
   s.text("title", "", "One line saying what this scene is for (copied to summary.json).");
   s.enter("particles");
-  s.text("file", "particles.csv",
+  s.file("file", "particles.csv",
          "CSV of balls, relative to the deck: x_m,y_m,z_m,radius_m [m] and optional vx_mps,vy_mps,vz_mps "
          "[m/s], wx_radps,wy_radps,wz_radps [rad/s], hold_velocity, hold_spin (0/1: keep the given "
          "velocity / spin whatever the forces), density_kgpm3 [kg/m^3], kn_npm, ks_npm [N/m], friction "

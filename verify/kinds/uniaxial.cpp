@@ -30,9 +30,9 @@ void declare_uniaxial(DeckSchema &s)
   s.choice("source", "lattice", {"lattice", "file"},
            "Where the balls come from: 'file' loads a prepared sample (thesis ch. 5); 'lattice' builds a "
            "regular lattice cylinder, a verification sample only.");
-  s.text("file", "",
+  s.file("file", "",
          "For source = file: a sample file (.json) written by a prepare run, or a prepare deck (.prm) whose "
-         "sample is prepared on first use and cached under runs/samples/; relative to this deck.");
+         "sample is prepared on first use and cached in samples/ beside that deck ($DEMVV_CACHE when set).");
   s.choice("lattice", "fcc", {"fcc", "sc"}, "For source = lattice: face-centred or simple cubic.");
   s.real("ball radius", 0.885e-3, 0, inf, "m", "Radius of every ball (thesis: 1.77 mm diameter sand).", true);
   s.real("diameter", 0.0311, 0, inf, "m", "Target diameter of the sample (the rim balls fit inside).", true);
@@ -182,7 +182,7 @@ Setup lattice_setup(const UniaxialSpec &spec)
 /// (install = sample), replaced (touching) or removed (none).
 Setup sample_setup(const UniaxialSpec &spec)
 {
-  SampleFile file = load_or_prepare_sample(spec.sample_file, "runs/samples");
+  SampleFile file = load_or_prepare_sample(spec.sample_file);
   Setup s;
   s.rate = spec.rate.scaling(run_strain_rate(spec, file.cell.height));
   const nlohmann::json preparation = file.preparation;

@@ -21,8 +21,9 @@ bool exists(const std::string &path)
   return stat(path.c_str(), &st) == 0;
 }
 
-/// A CSV file of the run, read to learn which columns hold data; figures
-/// refer to it from RUN_DIR/plots as `from_plots`.
+/// A CSV file of the run, read to learn which columns hold data (nan where
+/// the run had no value); figures refer to it from RUN_DIR/plots as
+/// `from_plots`.
 struct RunTable
 {
   std::unique_ptr<CsvTable> table;
@@ -31,7 +32,7 @@ struct RunTable
   RunTable(const std::string &run_dir, const std::string &file) : from_plots("../" + file)
   {
     if (exists(run_dir + "/" + file))
-      table = std::make_unique<CsvTable>(CsvTable::read(run_dir + "/" + file));
+      table = std::make_unique<CsvTable>(CsvTable::read(run_dir + "/" + file, CsvTable::Values::any_number));
   }
   bool usable() const { return table && table->rows() > 0; }
   bool has(const std::string &column) const { return usable() && table->has(column); }

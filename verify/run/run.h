@@ -8,6 +8,9 @@
 // summary.json; the command then exits with code 3.  A DEM run refused
 // before its first step (it could never end, dem_driver.h) leaves
 // summary.json with status "refused" and the one-line error (exit code 2).
+// `demvv run` writes only into a new or empty directory, or replaces a run
+// directory whole on request (claim_run_directory); --resume continues in
+// its own.
 #pragma once
 
 #include "verify/decks/deck.h"
@@ -17,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -29,6 +33,7 @@ struct RunOptions
   bool progress = true;  ///< show progress on a terminal
   bool resume = false;   ///< continue the run in out_dir from its checkpoint
   long pause_after = 0;  ///< > 0: stop after this many steps as an interruption would (batch-queue jobs)
+  bool replace = false;  ///< demvv run --replace: a non-empty out_dir holding a run is replaced whole
 };
 
 struct RunStatus
@@ -99,6 +104,17 @@ private:
   std::unique_ptr<CsvSeries> breaks_;
   std::unique_ptr<ParaviewWriter> paraview_;
 };
+
+/// Makes `dir` ready for a new run, before anything is written into it: a
+/// directory that does not exist yet or is empty is taken as it is; a
+/// non-empty one is refused (DeckError naming the directory and --replace),
+/// so that a run's files never mix with an earlier run's (old ParaView
+/// frames, gauge studies, level folders).  With `replace`, a run directory
+/// (one that holds deck.prm) has its contents removed, after `validate`
+/// (the deck's parse) has passed, so a bad deck loses nothing; a non-empty
+/// directory without deck.prm is never emptied.  A path that is no
+/// directory is refused.  OutputError when an entry cannot be removed.
+void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate);
 
 /// Records a fault into a status (from a NumericalFault).
 void record_fault(RunStatus &status, const dem::NumericalFault &fault);

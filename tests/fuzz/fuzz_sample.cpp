@@ -1,0 +1,12 @@
+// Fuzz target: the sample-file loader.  The input is a sample file (JSON),
+// loaded and checked as a test cell as a uniaxial run loads it.
+#include "tests/fuzz/fuzz_support.h"
+
+#include "verify/io/sample_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
+{
+  const std::string path = fuzz::write_input("sample.json", data, size);
+  fuzz::refused([&] { verify::check_test_cell(verify::read_sample(path), path); });
+  return 0;
+}
