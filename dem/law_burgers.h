@@ -62,6 +62,9 @@ namespace dem
 struct BurgersCoefficients
 {
   double a = 1, b = 1, c = 1, d = 1, kelvin_rate = 0; ///< A, B, C, D and dt / (2 C_k)
+  /// 1/C, 1/A and 1 - B/A, the same doubles the formulas would divide out
+  /// each time, taken once per step (no division in the contact loop).
+  double inverse_c = 1, inverse_a = 1, kelvin_carry = 0;
 
   BurgersCoefficients() = default;
   BurgersCoefficients(const BurgersConstants &k, double dt)
@@ -72,20 +75,23 @@ struct BurgersCoefficients
     const double viscous = kelvin_rate / a + 0.5 * dt / k.maxwell_viscosity;
     c = viscous + 1 / k.maxwell_stiffness;
     d = viscous - 1 / k.maxwell_stiffness;
+    inverse_c = 1 / c;
+    inverse_a = 1 / a;
+    kelvin_carry = 1 - b / a;
   }
 
   /// Force after a displacement increment (eq. 3.34); T is double or Vec3.
   template <class T>
   T force(const T &increment, const T &kelvin, const T &force_before) const
   {
-    return (increment + (1 - b / a) * kelvin - d * force_before) * (1 / c);
+    return (increment + kelvin_carry * kelvin - d * force_before) * inverse_c;
   }
 
   /// Kelvin displacement after the step (eq. 3.26).
   template <class T>
   T kelvin(const T &kelvin_before, const T &force_before, const T &force_after) const
   {
-    return (b * kelvin_before + kelvin_rate * (force_after + force_before)) * (1 / a);
+    return (b * kelvin_before + kelvin_rate * (force_after + force_before)) * inverse_a;
   }
 };
 
