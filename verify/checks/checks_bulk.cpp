@@ -144,6 +144,21 @@ CheckOutcome check_lattice_measurements(const CheckContext & /*ctx*/)
   return out;
 }
 
+namespace
+{
+/// A compare case on the 1000-ball sample (--quick) or the 6000-ball one.
+CompareResult compare_case(const CheckContext &ctx, const std::string &name)
+{
+  Deck deck = load_case(ctx, name);
+  if (!ctx.quick)
+    deck.set("sample/file", "../p01_thesis_6000/case.prm");
+  CompareResult r = run_compare(deck, {});
+  if (r.status.fault)
+    throw std::runtime_error(r.status.diagnostic());
+  return r;
+}
+} // namespace
+
 CheckOutcome check_packing_identity(const CheckContext &ctx)
 {
   CheckOutcome out;
@@ -151,12 +166,7 @@ CheckOutcome check_packing_identity(const CheckContext &ctx)
   for (const char *name : {"c10_identity_constant_rate", "c11_identity_creep", "c12_identity_relaxation",
                            "c13_identity_cyclic"})
   {
-    Deck deck = load_case(ctx, name);
-    if (!ctx.quick)
-      deck.set("sample/file", "../p01_thesis_6000/case.prm");
-    const CompareResult r = run_compare(deck, {});
-    if (r.status.fault)
-      throw std::runtime_error(r.status.diagnostic());
+    const CompareResult r = compare_case(ctx, name);
     const nlohmann::json &s = r.summary;
     const std::string history = s["loading"]["history"].get<std::string>();
     const bool creep = history == "creep";
@@ -204,12 +214,7 @@ CheckOutcome check_packing_identity(const CheckContext &ctx)
   // so the network's stress does not relax with the continuum's.
   for (const char *name : {"c14_compare_modified_burgers", "c15_compare_bonded_platens"})
   {
-    Deck deck = load_case(ctx, name);
-    if (!ctx.quick)
-      deck.set("sample/file", "../p01_thesis_6000/case.prm");
-    const CompareResult r = run_compare(deck, {});
-    if (r.status.fault)
-      throw std::runtime_error(r.status.diagnostic());
+    const CompareResult r = compare_case(ctx, name);
     const double gap = r.summary["difference_calibrated"]["relative"].get<double>();
     const bool modified = std::string(name) == "c14_compare_modified_burgers";
     if (modified)
