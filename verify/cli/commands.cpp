@@ -68,6 +68,7 @@ void draw_run_figures(const std::string &run_dir, bool list_drawn)
   if (!missing.empty())
     std::cerr << "demvv: figures not drawn: " << missing << "\n";
 }
+
 /// Runs `claim` (which may throw a one-line error) on MPI rank 0 alone when
 /// a kind runs on every rank, and gives every rank its verdict: all go on,
 /// or all throw the same error (DeckError, exit 2; OutputError, exit 4).
