@@ -68,11 +68,8 @@ void draw_run_figures(const std::string &run_dir, bool list_drawn)
   if (!missing.empty())
     std::cerr << "demvv: figures not drawn: " << missing << "\n";
 }
-/// Runs `claim` (which may throw a one-line error) on MPI rank 0 alone when
-/// a kind runs on every rank, and gives every rank its verdict: all go on,
-/// or all throw the same error (DeckError, exit 2; OutputError, exit 4).
-/// No rank goes on before rank 0 is done, so none writes into a directory
-/// that rank 0 is still emptying, and no rank waits for one that has quit.
+} // namespace
+
 void on_rank_zero_for_all(bool every_rank, const std::function<void()> &claim)
 {
   if (!every_rank)
@@ -107,7 +104,6 @@ void on_rank_zero_for_all(bool every_rank, const std::function<void()> &claim)
   if (code != 0)
     throw DeckError(message);
 }
-} // namespace
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
 {
