@@ -12,6 +12,8 @@ set -u
 demvv=$1
 work=$2
 mpirun=${3:-}
+launch_np2="${mpirun:+$mpirun --oversubscribe -np 2}"
+[ -n "$mpirun" ] && [ "$(id -u)" -eq 0 ] && launch_np2="$mpirun --allow-run-as-root --oversubscribe -np 2"
 rm -rf "$work"
 mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -109,11 +111,30 @@ one_line "$work/err" "unknown key"
 sweep --out "$work/a" --replace --quiet 2>"$work/err" || fail "--replace of a sweep directory failed: $(cat "$work/err")"
 [ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] || fail "--replace changed the table"
 
+# Seeds of a sample from a prepare deck: each seed prepares its own
+# packing (cached beside the deck), which its member's deck.prm names.
+printf 'set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n' > "$work/small.prm"
+printf 'set kind = uniaxial\nsubsection sample\n  set source = file\n  set file = small.prm\nend\nsubsection loading\n  set final strain = 0.002\nend\nsubsection output\n  set strain interval = 0.0005\nend\n' > "$work/packed.prm"
+"$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/p" --threads 2 --quiet 2>"$work/err" ||
+  fail "the sweep over prepared samples failed: $(cat "$work/err")"
+[ "$(ls "$work/samples" | wc -l)" -eq 2 ] || fail "not one cached sample per seed: $(ls "$work/samples")"
+for s in 1 2; do
+  sample=$(sed -n 's/^ *set file *= *//p' "$work/p/members/"*"_s$s/deck.prm")
+  python3 -c "import json, sys; sys.exit(json.load(open(sys.argv[1]))['seed'] != $s)" "$sample" ||
+    fail "seed $s: its sample '$sample' was not prepared with that seed"
+done
+[ "$(cut -d, -f4 "$work/p/sweep.csv" | sort -u | wc -l)" -eq 4 ] || fail "two seeds gave one peak stress: $(cat "$work/p/sweep.csv")"
+
 # Two MPI ranks share the members: the same results as one process.
 if [ -n "$mpirun" ]; then
-  launch="$mpirun --oversubscribe -np 2"
-  [ "$(id -u)" -eq 0 ] && launch="$mpirun --allow-run-as-root --oversubscribe -np 2"
-  timeout 300 $launch "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 --out "$work/mpi" \
+  DEMVV_CACHE="$work/mpi_samples" timeout 300 $launch_np2 "$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/mpi_p" \
+    --threads 1 --quiet 2>"$work/err_mpi" || fail "the 2-rank sweep over prepared samples failed: $(cat "$work/err_mpi")"
+  [ "$(ls "$work/mpi_samples" | wc -l)" -eq 2 ] || fail "MPI: not one sample per seed: $(ls "$work/mpi_samples")"
+  for m in $(ls "$work/p/members"); do # the header names the sample's folder
+    [ "$(tail -n +2 "$work/p/members/$m/series.csv")" = "$(tail -n +2 "$work/mpi_p/members/$m/series.csv")" ] ||
+      fail "MPI: $m has another series"
+  done
+  timeout 300 $launch_np2 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 --out "$work/mpi" \
     --threads 1 --quiet 2>"$work/err_mpi" || fail "the 2-rank sweep failed: $(cat "$work/err_mpi")"
   for m in $(ls "$work/a/members"); do
     [ -f "$work/a/members/$m/series.csv" ] || continue
@@ -121,7 +142,7 @@ if [ -n "$mpirun" ]; then
   done
   [ "$(without_time "$work/mpi/sweep.csv")" = "$(without_time "$work/a/sweep.csv")" ] || fail "MPI: another sweep.csv"
   grep -q '"ranks": 2' "$work/mpi/sweep.json" || fail "MPI: sweep.json does not say two ranks"
-  timeout 120 $launch "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,0.5 --out "$work/mpi" --quiet 2>"$work/err"
+  timeout 120 $launch_np2 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,0.5 --out "$work/mpi" --quiet 2>"$work/err"
   [ $? -eq 2 ] || fail "MPI: another sweep into the directory was not refused with 2 on every rank"
 fi
 rm -rf "$work"
