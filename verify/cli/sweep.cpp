@@ -50,6 +50,7 @@ struct Member
   std::vector<std::string> prepare_overrides;
   std::string resolved;            ///< the member's resolved deck ("" when refused before it runs)
   std::string refusal;             ///< why the member cannot run
+  std::string refused_deck;        ///< a refused member's identity: the base deck's hash and the overrides
 };
 
 /// One member's row, read from its run directory.
@@ -213,10 +214,13 @@ void prepare_samples(std::vector<Member> &members, int rank, int ranks, bool pro
 
 /// Completes each member's overrides with its prepared sample and resolves
 /// its deck; what its deck refuses is kept as the member's refusal.
-void resolve_members(std::vector<Member> &members, const std::string &base_path)
+void resolve_members(std::vector<Member> &members, const std::string &base_path, const std::string &base_hash)
 {
   for (Member &m : members)
   {
+    m.refused_deck = base_path + " (resolved deck " + base_hash + ")";
+    for (const std::string &o : m.overrides)
+      m.refused_deck += " --set " + o;
     if (!m.refusal.empty())
       continue;
     try
@@ -302,8 +306,8 @@ Row read_row(const std::string &dir, const Member &m)
   if (state == "refused" && !summary.contains("kind"))
   {
     // Refused before a run directory was made: the sweep wrote it, with
-    // the refused deck's overrides.
-    if (summary.value("overrides", std::vector<std::string>{}) != m.overrides)
+    // the refused deck's identity.
+    if (summary.value("refused_deck", "") != m.refused_deck)
       return row;
   }
   else
@@ -543,7 +547,7 @@ int command_sweep(const SweepOptions &o)
   on_rank_zero_for_all(true, [&] { claim_sweep_directory(o.out_dir, o.replace, members); });
   const int threads = sweep_threads(o.threads, mpi.ranks);
   prepare_samples(members, int(mpi.rank), int(mpi.ranks), o.progress);
-  resolve_members(members, o.base_deck);
+  resolve_members(members, o.base_deck, fnv1a_hex(base.resolved()));
 
   std::vector<bool> kept(members.size());
   std::size_t n_kept = 0;
@@ -614,7 +618,7 @@ int command_sweep(const SweepOptions &o)
       make_directories(dir);
       write_atomically(dir + "/summary.json",
                        json_text({{"status", {{"state", "refused"}, {"message", refusal}}},
-                                  {"overrides", m.overrides},
+                                  {"refused_deck", m.refused_deck},
                                   {"provenance", provenance(threads, m.seed, m.resolved)}},
                                  2) +
                          "\n");

@@ -7,7 +7,9 @@
 // Members are numbered in the order of the product, the first --vary
 // outermost and the seed innermost; member i runs the base deck with its
 // values set as --set would, in DIR/members/<i>_<values>_s<seed>/, through
-// the deck kind's own run function.
+// the deck kind's own run function.  A --vary with one value sets that
+// entry for every member (as --set would); a value holding a comma (a
+// vector) cannot be varied.
 //
 // A seed s (--seeds N gives s = 1..N) sets every random seed of the member:
 // `bonds/seed` (strength and removal draws) and `sample/seed` (a prepare
@@ -38,7 +40,8 @@
 // (member i on rank i mod K), each member on one rank with its threads, so
 // results do not depend on K; rank 0 writes the tables.  Samples are
 // prepared first, each on one rank.  Kinds that run on every MPI rank (the
-// continuum cylinder, mms) are refused under more than one rank.
+// continuum cylinder, mms) are refused under more than one rank, and a
+// kind that refuses mpirun itself (compare) has its members refused there.
 #pragma once
 
 #include <string>
