@@ -68,6 +68,7 @@ void draw_run_figures(const std::string &run_dir, bool list_drawn)
   if (!missing.empty())
     std::cerr << "demvv: figures not drawn: " << missing << "\n";
 }
+} // namespace
 
 /// Runs `claim` (which may throw a one-line error) on MPI rank 0 alone when
 /// a kind runs on every rank, and gives every rank its verdict: all go on,
@@ -108,7 +109,6 @@ void on_rank_zero_for_all(bool every_rank, const std::function<void()> &claim)
   if (code != 0)
     throw DeckError(message);
 }
-} // namespace
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
 {

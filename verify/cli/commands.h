@@ -3,6 +3,7 @@
 
 #include "verify/run/run.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,14 @@ namespace verify
 /// demvv run: returns the exit code (0 ok, 3 numerical fault); throws DeckError on bad input.
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides,
                 const RunOptions &options);
+
+/// Runs `claim` (which may throw a one-line error) on MPI rank 0 alone when
+/// `every_rank`, and gives every rank its verdict: all go on, or all throw
+/// the same error (DeckError, exit 2; OutputError, exit 4).  No rank goes
+/// on before rank 0 is done, so none writes into a directory that rank 0 is
+/// still emptying, and no rank waits for one that has quit.  Without
+/// `every_rank`, runs `claim` here.
+void on_rank_zero_for_all(bool every_rank, const std::function<void()> &claim);
 
 /// demvv plot: (re)draws the figures of a run directory into RUN_DIR/plots;
 /// returns 0 (figures gnuplot could not draw are listed, not fatal).

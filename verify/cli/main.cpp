@@ -1,6 +1,7 @@
 // demvv: the command-line entry point.
 //
 //   demvv run DECK [--out DIR [--replace]] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
+//   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
 //   demvv defaults KIND
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
 //   demvv bench [--particles N] [--steps N] [--threads N]
@@ -16,6 +17,7 @@
 // checkpoint written).
 #include "verify/cli/bench.h"
 #include "verify/cli/commands.h"
+#include "verify/cli/sweep.h"
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 
@@ -61,6 +63,28 @@ int main(int argc, char **argv)
                   "exit 0), e.g. to fit a long run into batch-queue jobs; continue with --resume")
     ->check(CLI::Range(1L, 1000000000000L));
   run->footer(kinds_help);
+
+  verify::SweepOptions sweep;
+  auto *sweep_cmd = app.add_subcommand(
+    "sweep", "Run a deck over every combination of varied entries and seeds; sweep.csv and stats.csv in --out "
+             "(rerun to resume; under mpirun the ranks share the members)");
+  sweep_cmd->add_option("BASE_DECK", sweep.base_deck, "The deck every member starts from")->required();
+  sweep_cmd->add_option("--vary", sweep.vary,
+                        "SECTION/KEY=v1,v2,...: the values of one deck entry (repeatable; members are the "
+                        "product)");
+  sweep_cmd->add_option("--seeds", sweep.seeds,
+                        "Run each combination with seeds 1..N (bond strengths and, for a sample from a prepare "
+                        "deck, the packing); default: the deck's own seeds")
+    ->check(CLI::Range(1, 100000));
+  sweep_cmd->add_option("--out", sweep.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")->required();
+  sweep_cmd->add_flag("--replace", sweep.replace, "Start the sweep in --out over (only a sweep directory is emptied)");
+  sweep_cmd->add_option("--threads", sweep.threads,
+                        "OpenMP threads per member (default: OMP_NUM_THREADS, else the idle cores, shared among "
+                        "MPI ranks)")
+    ->check(CLI::Range(1, 1024));
+  bool sweep_quiet = false;
+  sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");
+  sweep_cmd->footer(kinds_help);
 
   auto *defaults = app.add_subcommand("defaults", "Print a complete, documented deck of a kind");
   defaults->add_option("KIND", kind, "Deck kind")->required();
@@ -130,6 +154,13 @@ int main(int argc, char **argv)
       return verify::command_run(deck_path, overrides,
                                  {resume_dir.empty() ? out_dir : resume_dir, threads, !quiet, !resume_dir.empty(),
                                   pause_after, replace});
+    }
+    if (sweep_cmd->parsed())
+    {
+      sweep.progress = !sweep_quiet;
+      for (int i = 0; i < argc; ++i)
+        sweep.command_line += (i ? " " : "") + std::string(argv[i]);
+      return verify::command_sweep(sweep);
     }
     if (defaults->parsed())
       return verify::command_defaults(kind);

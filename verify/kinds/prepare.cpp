@@ -195,31 +195,43 @@ std::string sample_cache_dir(const std::string &deck_path)
   return (slash == std::string::npos ? std::string(".") : deck_path.substr(0, slash)) + "/samples";
 }
 
-SampleFile load_or_prepare_sample(const std::string &path)
+namespace
 {
-  const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
-  if (!is_deck)
-  {
-    SampleFile sample = read_sample(path);
-    check_test_cell(sample, path);
-    return sample;
-  }
-  const Deck deck = Deck::from_file(path);
+/// The cache folder of a prepare deck with overrides.
+std::string cache_entry(const Deck &deck, const std::string &path)
+{
   if (deck.kind() != "prepare")
     throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
   // Keyed by the resolved deck and the procedure's revision, so that a
   // changed procedure never serves a stale sample.
   const std::string key = deck.resolved() + "\npreparation revision " + std::to_string(dem::preparation_revision);
-  const std::string dir = sample_cache_dir(path) + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
+  return sample_cache_dir(path) + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
+}
+} // namespace
+
+std::string cached_sample_file_name(const std::string &path, const std::vector<std::string> &overrides)
+{
+  return cache_entry(Deck::from_file(path, overrides), path) + "/sample.json";
+}
+
+std::string cached_sample_file(const std::string &path, const std::vector<std::string> &overrides, bool progress)
+{
+  const Deck deck = Deck::from_file(path, overrides);
+  const std::string dir = cache_entry(deck, path);
   if (std::filesystem::exists(dir + "/sample.json"))
-  {
-    SampleFile sample = read_sample(dir + "/sample.json");
-    check_test_cell(sample, dir + "/sample.json");
-    return sample;
-  }
-  PrepareResult r = run_prepare(deck, {dir, 0, true});
+    return dir + "/sample.json";
+  const PrepareResult r = run_prepare(deck, {dir, 0, progress});
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());
-  return std::move(r.sample);
+  return dir + "/sample.json";
+}
+
+SampleFile load_or_prepare_sample(const std::string &path)
+{
+  const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
+  const std::string file = is_deck ? cached_sample_file(path, {}, true) : path;
+  SampleFile sample = read_sample(file);
+  check_test_cell(sample, file);
+  return sample;
 }
 } // namespace verify

@@ -14,6 +14,9 @@
 #include "verify/run/run.h"
 #include "verify/io/sample_file.h"
 
+#include <string>
+#include <vector>
+
 namespace verify
 {
 void declare_prepare(DeckSchema &s);
@@ -35,6 +38,16 @@ PrepareResult run_prepare(const Deck &deck, const RunOptions &options);
 /// The folder where the samples of prepare decks are cached: $DEMVV_CACHE
 /// when set and not empty, else samples/ beside the deck at `deck_path`.
 std::string sample_cache_dir(const std::string &deck_path);
+
+/// The cached sample file (sample.json) of the prepare deck at `path` with
+/// `overrides` ("section/key=value", as --set), prepared on first use: a
+/// sweep gives each seed its own sample this way.  A deck of another kind
+/// is refused (DeckError), a preparation that stops on a fault is a
+/// std::runtime_error.
+std::string cached_sample_file(const std::string &path, const std::vector<std::string> &overrides, bool progress);
+
+/// Where cached_sample_file() keeps that sample, prepared or not.
+std::string cached_sample_file_name(const std::string &path, const std::vector<std::string> &overrides);
 
 /// Reads a sample: a .json sample file, or a prepare deck (.prm) whose
 /// sample is prepared on first use and cached in sample_cache_dir().

@@ -1,0 +1,149 @@
+#!/bin/sh
+# demvv sweep: members are the product of the --vary values and the seeds,
+# one run directory each; a value the deck refuses is a row, not the end of
+# the sweep; sweep.csv and stats.csv agree with the members' summaries (the
+# 95 % half-width by Student t); a rerun keeps the completed members and
+# runs only the missing one, to the same table; a directory holding
+# something else, another sweep or a bad --vary is refused (exit 2, one
+# line); under MPI two ranks give the members the same results, byte for
+# byte, as one process.
+# Usage: sweep.sh DEMVV WORK_DIR [MPIRUN]
+set -u
+demvv=$1
+work=$2
+mpirun=${3:-}
+launch_np2="${mpirun:+$mpirun --oversubscribe -np 2}"
+[ -n "$mpirun" ] && [ "$(id -u)" -eq 0 ] && launch_np2="$mpirun --allow-run-as-root --oversubscribe -np 2"
+rm -rf "$work"
+mkdir -p "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+one_line() { [ "$(wc -l < "$1")" -eq 1 ] || fail "$2: the error is not one line: $(cat "$1")"; }
+
+# A small lattice with random bond strengths, so that seeds matter.
+cat > "$work/base.prm" <<'EOF'
+set kind = uniaxial
+subsection sample
+  set source = lattice
+  set diameter = 0.008
+  set height = 0.008
+end
+subsection bonds
+  set strength cov = 0.3
+end
+subsection loading
+  set final strain = 0.004
+end
+EOF
+sweep() { "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 "$@"; }
+
+sweep --out "$work/a" --threads 2 2>"$work/err_a" || fail "the sweep failed: $(cat "$work/err_a")"
+[ "$(ls "$work/a/members" | wc -l)" -eq 6 ] || fail "not six member directories: $(ls "$work/a/members")"
+grep -q "6 members: 0 kept from an earlier run, 6 to run" "$work/err_a" || fail "opening line: $(cat "$work/err_a")"
+grep -q '"completed"' "$work/a/sweep.json" && grep -q '"balls/friction"' "$work/a/sweep.json" ||
+  fail "sweep.json lacks its status or varied key"
+
+# The tables against the members' own summaries.
+python3 - "$work/a" <<'EOF' || fail "sweep.csv or stats.csv disagree with the members"
+import csv, json, math, os, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(l for l in open(d + "/sweep.csv") if not l.startswith("#")))
+assert len(rows) == 6, rows
+assert [r["balls/friction"] for r in rows] == ["0.2", "0.2", "-1", "-1", "0.5", "0.5"], rows
+assert [r["seed"] for r in rows] == ["1", "2"] * 3, rows
+assert [r["status"] for r in rows] == ["completed"] * 2 + ["refused"] * 2 + ["completed"] * 2, rows
+assert "friction" in rows[2]["message"], rows[2]
+members = sorted(os.listdir(d + "/members"))
+for r, m in zip(rows, members):
+    assert m.startswith(r["member"] + "_"), (m, r["member"])
+    if r["status"] != "completed":
+        continue
+    s = json.load(open(d + "/members/" + m + "/summary.json"))
+    for key in ("peak_stress_pa", "strain_at_peak", "initial_modulus_pa", "poisson_ratio"):
+        assert math.isclose(float(r[key]), s[key], rel_tol=1e-10), (key, r[key], s[key])
+    assert 0 <= float(r["bonds_broken_fraction_at_peak"]) <= 1, r
+    assert float(r["run_time_s"]) > 0, r
+peaks = [float(rows[i]["peak_stress_pa"]) for i in (0, 1)]
+assert peaks[0] != peaks[1], "two seeds gave the same peak stress"
+stats = list(csv.DictReader(l for l in open(d + "/stats.csv") if not l.startswith("#")))
+assert [s["n"] for s in stats] == ["2", "0", "2"], stats
+mean = sum(peaks) / 2
+sd = abs(peaks[0] - peaks[1]) / math.sqrt(2)
+t = 12.706204736174698  # Student t, 0.975 quantile, one degree of freedom
+assert math.isclose(float(stats[0]["peak_stress_mean_pa"]), mean, rel_tol=1e-10), stats[0]
+assert math.isclose(float(stats[0]["peak_stress_sd_pa"]), sd, rel_tol=1e-10), stats[0]
+assert math.isclose(float(stats[0]["peak_stress_ci95_pa"]), t * sd / math.sqrt(2), rel_tol=1e-9), stats[0]
+assert stats[1]["peak_stress_mean_pa"] == "", stats[1]
+EOF
+
+# Resume: one member's directory gone; the rerun runs that one alone and
+# leaves the same table (run times aside).
+without_time() { python3 -c "
+import csv, sys
+rows = csv.reader(l for l in open(sys.argv[1]) if not l.startswith('#'))
+for r in rows:
+    del r[-2]
+    print(r)" "$1"; }
+cp -r "$work/a" "$work/a_before"
+member=$(ls "$work/a/members" | sed -n 5p)
+rm -rf "$work/a/members/$member"
+sweep --out "$work/a" --threads 2 2>"$work/err_b" || fail "the resumed sweep failed: $(cat "$work/err_b")"
+grep -q "6 members: 5 kept from an earlier run, 1 to run" "$work/err_b" || fail "resume did not keep five: $(cat "$work/err_b")"
+for m in $(ls "$work/a/members"); do
+  [ "$m" = "$member" ] && continue
+  cmp -s "$work/a/members/$m/summary.json" "$work/a_before/members/$m/summary.json" || fail "resume reran $m"
+done
+[ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] ||
+  fail "the resumed sweep.csv differs from the uninterrupted one"
+cmp -s "$work/a/members/$member/series.csv" "$work/a_before/members/$member/series.csv" || fail "the rerun member differs"
+
+# Refusals: another sweep into the same directory, a folder that holds no
+# sweep (even with --replace), an unknown key.
+"$demvv" sweep "$work/base.prm" --vary balls/friction=0.3 --out "$work/a" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "holds another sweep" "$work/err" || fail "another sweep into a sweep directory: $(cat "$work/err")"
+one_line "$work/err" "another sweep"
+mkdir -p "$work/other" && echo keep > "$work/other/notes.txt"
+sweep --out "$work/other" --replace 2>"$work/err"
+[ $? -eq 2 ] && [ -f "$work/other/notes.txt" ] || fail "a folder without sweep.json was not refused: $(cat "$work/err")"
+one_line "$work/err" "folder without sweep.json"
+"$demvv" sweep "$work/base.prm" --vary balls/fricton=0.3 --out "$work/c" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "fricton" "$work/err" && [ ! -e "$work/c" ] || fail "an unknown --vary key: $(cat "$work/err")"
+one_line "$work/err" "unknown key"
+sweep --out "$work/a" --replace --quiet 2>"$work/err" || fail "--replace of a sweep directory failed: $(cat "$work/err")"
+[ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] || fail "--replace changed the table"
+
+# Seeds of a sample from a prepare deck: each seed prepares its own
+# packing (cached beside the deck), which its member's deck.prm names.
+printf 'set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n' > "$work/small.prm"
+printf 'set kind = uniaxial\nsubsection sample\n  set source = file\n  set file = small.prm\nend\nsubsection loading\n  set final strain = 0.002\nend\nsubsection output\n  set strain interval = 0.0005\nend\n' > "$work/packed.prm"
+"$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/p" --threads 2 --quiet 2>"$work/err" ||
+  fail "the sweep over prepared samples failed: $(cat "$work/err")"
+[ "$(ls "$work/samples" | wc -l)" -eq 2 ] || fail "not one cached sample per seed: $(ls "$work/samples")"
+for s in 1 2; do
+  sample=$(sed -n 's/^ *set file *= *//p' "$work/p/members/"*"_s$s/deck.prm")
+  python3 -c "import json, sys; sys.exit(json.load(open(sys.argv[1]))['seed'] != $s)" "$sample" ||
+    fail "seed $s: its sample '$sample' was not prepared with that seed"
+done
+[ "$(cut -d, -f4 "$work/p/sweep.csv" | sort -u | wc -l)" -eq 4 ] || fail "two seeds gave one peak stress: $(cat "$work/p/sweep.csv")"
+
+# Two MPI ranks share the members: the same results as one process.
+if [ -n "$mpirun" ]; then
+  DEMVV_CACHE="$work/mpi_samples" timeout 300 $launch_np2 "$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/mpi_p" \
+    --threads 1 --quiet 2>"$work/err_mpi" || fail "the 2-rank sweep over prepared samples failed: $(cat "$work/err_mpi")"
+  [ "$(ls "$work/mpi_samples" | wc -l)" -eq 2 ] || fail "MPI: not one sample per seed: $(ls "$work/mpi_samples")"
+  for m in $(ls "$work/p/members"); do # the header names the sample's folder
+    [ "$(tail -n +2 "$work/p/members/$m/series.csv")" = "$(tail -n +2 "$work/mpi_p/members/$m/series.csv")" ] ||
+      fail "MPI: $m has another series"
+  done
+  timeout 300 $launch_np2 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 --out "$work/mpi" \
+    --threads 1 --quiet 2>"$work/err_mpi" || fail "the 2-rank sweep failed: $(cat "$work/err_mpi")"
+  for m in $(ls "$work/a/members"); do
+    [ -f "$work/a/members/$m/series.csv" ] || continue
+    cmp -s "$work/a/members/$m/series.csv" "$work/mpi/members/$m/series.csv" || fail "MPI: $m has another series"
+  done
+  [ "$(without_time "$work/mpi/sweep.csv")" = "$(without_time "$work/a/sweep.csv")" ] || fail "MPI: another sweep.csv"
+  grep -q '"ranks": 2' "$work/mpi/sweep.json" || fail "MPI: sweep.json does not say two ranks"
+  timeout 120 $launch_np2 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,0.5 --out "$work/mpi" --quiet 2>"$work/err"
+  [ $? -eq 2 ] || fail "MPI: another sweep into the directory was not refused with 2 on every rank"
+fi
+rm -rf "$work"
+echo "sweep: ok"

@@ -1,0 +1,658 @@
+#include "verify/cli/sweep.h"
+
+#include "verify/cli/commands.h"
+#include "verify/decks/csv_input.h"
+#include "verify/decks/deck.h"
+#include "verify/io/output.h"
+#include "verify/kinds/prepare.h"
+#include "verify/run/analysis.h"
+#include "verify/run/run.h"
+
+#include "continuum/cylinder.h"
+
+#include <gsl/gsl_cdf.h>
+#include <mpi.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace verify
+{
+namespace
+{
+namespace fs = std::filesystem;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+struct Varied
+{
+  std::string key;
+  std::vector<std::string> values;
+};
+
+struct Member
+{
+  std::size_t index = 0;
+  std::vector<std::string> values; ///< one per varied key
+  int seed = 0;                    ///< 0: the deck's own
+  std::string label;               ///< folder name under members/
+  std::vector<std::string> overrides;
+  std::string prepare_deck;        ///< the prepare deck its sample comes from when a seed re-prepares it
+  std::vector<std::string> prepare_overrides;
+  std::string resolved;            ///< the member's resolved deck ("" when refused before it runs)
+  std::string refusal;             ///< why the member cannot run
+  std::string refused_deck;        ///< a refused member's identity: the base deck's hash and the overrides
+};
+
+/// One member's row, read from its run directory.
+struct Row
+{
+  std::string status = "pending";
+  std::string message;
+  double peak = nan, strain = nan, modulus = nan, poisson = nan, broken = nan, seconds = nan;
+};
+
+/// True when a deck of this kind declares `key` (the deck reader treats an
+/// undeclared key as a bug, so this asks without that).
+bool declares(const Deck &deck, const std::string &key)
+{
+  try
+  {
+    deck.text(key);
+    return true;
+  }
+  catch (const std::logic_error &)
+  {
+    return false;
+  }
+}
+
+std::vector<std::string> split(const std::string &text, char by)
+{
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, by))
+    parts.push_back(part);
+  if (!text.empty() && text.back() == by)
+    parts.emplace_back();
+  return parts;
+}
+
+std::string trimmed(const std::string &s)
+{
+  const auto first = s.find_first_not_of(" \t");
+  return first == std::string::npos ? "" : s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+/// "SECTION/KEY=v1,v2,...", checked against the base deck.
+Varied parse_vary(const std::string &arg, const Deck &base)
+{
+  const auto eq = arg.find('=');
+  const std::string key = eq == std::string::npos ? "" : trimmed(arg.substr(0, eq));
+  if (key.empty() || key.find('/') == std::string::npos)
+    throw DeckError("--vary '" + arg + "': expected SECTION/KEY=v1,v2,... (a deck entry and its values)");
+  if (!declares(base, key))
+    throw DeckError("--vary '" + arg + "': " + base.path() + " (kind " + base.kind() + ") has no entry '" + key +
+                    "': expected an entry that `demvv defaults " + base.kind() + "` lists");
+  Varied v{key, {}};
+  for (const std::string &value : split(arg.substr(eq + 1), ','))
+  {
+    if (trimmed(value).empty())
+      throw DeckError("--vary '" + arg + "': an empty value: expected comma-separated values, none empty");
+    v.values.push_back(trimmed(value));
+  }
+  if (v.values.empty())
+    throw DeckError("--vary '" + arg + "': no values: expected comma-separated values after '='");
+  return v;
+}
+
+/// A value as part of a folder name: letters, digits, '.', '+', '-' kept.
+std::string folder_part(const std::string &value)
+{
+  std::string out;
+  for (const char c : value.substr(0, 16))
+    out += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-' ? c : '-';
+  return out;
+}
+
+bool is_prepare_deck(const std::string &file)
+{
+  return file.size() > 4 && file.compare(file.size() - 4, 4, ".prm") == 0;
+}
+
+/// The members in product order (first --vary outermost, seed innermost),
+/// each with its overrides; the sample a seed re-prepares is named, not yet
+/// prepared.
+std::vector<Member> plan_members(const std::string &base_path, const std::vector<Varied> &varied, int seeds)
+{
+  std::size_t count = std::max(seeds, 1);
+  for (const Varied &v : varied)
+    count *= v.values.size();
+  const std::size_t width = std::to_string(count - 1).size();
+  std::vector<Member> members(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    Member &m = members[i];
+    m.index = i;
+    std::size_t rest = i;
+    m.seed = seeds > 0 ? int(rest % std::size_t(seeds)) + 1 : 0;
+    rest /= std::size_t(std::max(seeds, 1));
+    m.values.resize(varied.size());
+    for (std::size_t k = varied.size(); k-- > 0;)
+    {
+      m.values[k] = varied[k].values[rest % varied[k].values.size()];
+      rest /= varied[k].values.size();
+    }
+    const std::string number = std::to_string(i);
+    m.label = std::string(width - number.size(), '0') + number;
+    for (std::size_t k = 0; k < varied.size(); ++k)
+    {
+      m.label += "_" + folder_part(m.values[k]);
+      m.overrides.push_back(varied[k].key + "=" + m.values[k]);
+    }
+    if (m.seed > 0)
+      m.label += "_s" + std::to_string(m.seed);
+    if (m.seed == 0)
+      continue;
+    // The seed keys of this member's deck (its kind and sample source).
+    try
+    {
+      const Deck deck = Deck::from_file(base_path, m.overrides);
+      const std::string s = std::to_string(m.seed);
+      if (declares(deck, "bonds/seed"))
+        m.overrides.push_back("bonds/seed=" + s);
+      if (declares(deck, "sample/seed"))
+        m.overrides.push_back("sample/seed=" + s);
+      const bool from_file = !declares(deck, "sample/source") || deck.text("sample/source") == "file";
+      if (from_file && declares(deck, "sample/file") && is_prepare_deck(deck.text("sample/file")))
+      {
+        m.prepare_deck = deck.file("sample/file");
+        const Deck prepare = Deck::from_file(m.prepare_deck);
+        m.prepare_overrides = {"sample/seed=" + s};
+        if (declares(prepare, "bonds/seed"))
+          m.prepare_overrides.push_back("bonds/seed=" + s);
+      }
+    }
+    catch (const DeckError &e)
+    {
+      m.refusal = e.what();
+    }
+  }
+  return members;
+}
+
+/// Prepares the samples the seeds call for, each distinct one on one rank
+/// (round-robin); a preparation that fails refuses its members.
+void prepare_samples(std::vector<Member> &members, int rank, int ranks, bool progress)
+{
+  std::map<std::pair<std::string, std::vector<std::string>>, std::size_t> order;
+  for (const Member &m : members)
+    if (!m.prepare_deck.empty() && m.refusal.empty())
+      order.emplace(std::make_pair(m.prepare_deck, m.prepare_overrides), order.size());
+  for (const auto &[sample, n] : order)
+    if (int(n % std::size_t(ranks)) == rank)
+      try
+      {
+        cached_sample_file(sample.first, sample.second, progress && rank == 0);
+      }
+      catch (const std::runtime_error &e)
+      {
+        std::cerr << "demvv: " << e.what() << "\n";
+      }
+  MPI_Barrier(MPI_COMM_WORLD);
+}
+
+/// Completes each member's overrides with its prepared sample and resolves
+/// its deck; what its deck refuses is kept as the member's refusal.
+void resolve_members(std::vector<Member> &members, const std::string &base_path, const std::string &base_hash)
+{
+  for (Member &m : members)
+  {
+    m.refused_deck = base_path + " (resolved deck " + base_hash + ")";
+    for (const std::string &o : m.overrides)
+      m.refused_deck += " --set " + o;
+    if (!m.refusal.empty())
+      continue;
+    try
+    {
+      if (!m.prepare_deck.empty())
+      {
+        const std::string sample = cached_sample_file_name(m.prepare_deck, m.prepare_overrides);
+        if (!fs::exists(sample))
+          throw DeckError(m.prepare_deck + ": its sample for seed " + std::to_string(m.seed) +
+                          " could not be prepared (see " + fs::path(sample).parent_path().string() +
+                          "/summary.json): expected a prepare deck that prepares");
+        m.overrides.push_back("sample/file=" + sample);
+      }
+      m.resolved = Deck::from_file(base_path, m.overrides).resolved();
+    }
+    catch (const DeckError &e)
+    {
+      m.refusal = e.what();
+    }
+  }
+}
+
+/// The status word of a run directory's summary.json.
+std::string status_word(const std::string &state)
+{
+  if (state == "numerical fault")
+    return "fault";
+  if (state == "paused")
+    return "interrupted";
+  return state;
+}
+
+double number(const nlohmann::json &j, const char *key)
+{
+  return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : nan;
+}
+
+/// Bond breakage at the peak stress, from the member's series.csv (the row
+/// of the peak), else the final breakage from summary.json.
+double broken_at_peak(const std::string &dir, const nlohmann::json &summary)
+{
+  try
+  {
+    const CsvTable t = CsvTable::read(dir + "/series.csv", CsvTable::Values::any_number);
+    if (t.has("axial_strain") && t.has("axial_stress_pa") && t.has("bonds_broken_fraction") && t.rows() > 0)
+    {
+      std::vector<double> eps, sig;
+      for (std::size_t r = 0; r < t.rows(); ++r)
+      {
+        eps.push_back(t.get(r, "axial_strain"));
+        sig.push_back(t.get(r, "axial_stress_pa"));
+      }
+      return t.get(peak(eps, sig).index, "bonds_broken_fraction");
+    }
+  }
+  catch (const std::runtime_error &)
+  {
+  }
+  if (!summary.contains("bonds") || !summary.at("bonds").is_object())
+    return nan;
+  const nlohmann::json &b = summary.at("bonds");
+  const double installed = number(b, "installed");
+  const double broken = number(b, "broken_tension") + number(b, "broken_shear") + number(b, "broken_displacement");
+  return installed > 0 ? broken / installed : nan;
+}
+
+/// A member's row from its run directory: pending while the directory
+/// holds no summary of this member's deck.
+Row read_row(const std::string &dir, const Member &m)
+{
+  Row row;
+  nlohmann::json summary;
+  try
+  {
+    summary = nlohmann::json::parse(read_file(dir + "/summary.json"));
+  }
+  catch (const std::exception &)
+  {
+    return row;
+  }
+  const nlohmann::json status = summary.value("status", nlohmann::json::object());
+  const std::string state = status.value("state", "");
+  if (state == "refused" && !summary.contains("kind"))
+  {
+    // Refused before a run directory was made: the sweep wrote it, with
+    // the refused deck's identity.
+    if (summary.value("refused_deck", "") != m.refused_deck)
+      return row;
+  }
+  else
+  {
+    std::string deck;
+    try
+    {
+      deck = read_file(dir + "/deck.prm");
+    }
+    catch (const std::exception &)
+    {
+      return row;
+    }
+    if (deck != m.resolved || state.empty() || state == "running")
+      return row;
+  }
+  row.status = status_word(state);
+  if (status.contains("fault"))
+    row.message = status.at("fault").value("message", "");
+  else
+    row.message = status.value("message", "");
+  row.seconds = number(status, "wall_seconds");
+  if (!std::isfinite(row.seconds))
+    row.seconds = number(summary, "wall_seconds");
+  if (row.status != "completed")
+    return row;
+  row.peak = number(summary, "peak_stress_pa");
+  row.strain = number(summary, "strain_at_peak");
+  row.modulus = number(summary, "initial_modulus_pa");
+  row.poisson = number(summary, "poisson_ratio");
+  row.broken = broken_at_peak(dir, summary);
+  return row;
+}
+
+/// True when a member's directory holds its completed run, or its deck's
+/// refusal (the same deck is refused again): resume keeps it.
+bool finished(const std::string &dir, const Member &m)
+{
+  const std::string status = read_row(dir, m).status;
+  return status == "completed" || status == "refused";
+}
+
+std::string cell(double v) { return std::isfinite(v) ? format_number(v) : ""; }
+
+std::string quoted(std::string text)
+{
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::string out = "\"";
+  for (const char c : text)
+    out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+struct Stat
+{
+  std::size_t n = 0;
+  double mean = nan, sd = nan, ci95 = nan;
+};
+
+/// Mean, sample standard deviation and the 95 % Student-t half-width of
+/// the finite values (sd and half-width need two).
+Stat statistics(const std::vector<double> &all)
+{
+  std::vector<double> v;
+  for (const double x : all)
+    if (std::isfinite(x))
+      v.push_back(x);
+  Stat s;
+  s.n = v.size();
+  if (v.empty())
+    return s;
+  double sum = 0;
+  for (const double x : v)
+    sum += x;
+  s.mean = sum / double(v.size());
+  if (v.size() < 2)
+    return s;
+  double squares = 0;
+  for (const double x : v)
+    squares += (x - s.mean) * (x - s.mean);
+  s.sd = std::sqrt(squares / double(v.size() - 1));
+  s.ci95 = gsl_cdf_tdist_Pinv(0.975, double(v.size() - 1)) * s.sd / std::sqrt(double(v.size()));
+  return s;
+}
+
+/// Writes sweep.csv and stats.csv from the members' directories; returns
+/// the rows.
+std::vector<Row> write_tables(const std::string &out, const std::string &base_path, const std::vector<Varied> &varied,
+                              const std::vector<Member> &members)
+{
+  std::vector<Row> rows;
+  for (const Member &m : members)
+    rows.push_back(read_row(out + "/members/" + m.label, m));
+  std::string keys;
+  for (const Varied &v : varied)
+    keys += v.key + ",";
+  std::ostringstream t;
+  t << "# demvv sweep of " << base_path
+    << ": one row per member; units: peak_stress_pa [Pa], strain_at_peak [-], initial_modulus_pa [Pa], "
+       "poisson_ratio [-], bonds_broken_fraction_at_peak [-] (at the peak stress; the final breakage where the "
+       "run has no series), run_time_s [s]; compression positive; seed empty: the deck's own seeds\n"
+    << "member," << keys
+    << "seed,status,peak_stress_pa,strain_at_peak,initial_modulus_pa,poisson_ratio,bonds_broken_fraction_at_peak,"
+       "run_time_s,message\n";
+  for (std::size_t i = 0; i < members.size(); ++i)
+  {
+    const Member &m = members[i];
+    const Row &r = rows[i];
+    t << m.index << ",";
+    for (const std::string &v : m.values)
+      t << v << ",";
+    t << (m.seed > 0 ? std::to_string(m.seed) : "") << "," << r.status << "," << cell(r.peak) << ","
+      << cell(r.strain) << "," << cell(r.modulus) << "," << cell(r.poisson) << "," << cell(r.broken) << ","
+      << cell(r.seconds) << "," << (r.message.empty() ? "" : quoted(r.message)) << "\n";
+  }
+  write_atomically(out + "/sweep.csv", t.str());
+
+  std::ostringstream s;
+  s << "# demvv sweep of " << base_path
+    << ": per set of varied values, over the completed seeds: n, mean, sample standard deviation (sd) and the "
+       "95 % confidence half-width of the mean (ci95, Student t with n - 1 degrees of freedom; sd and ci95 need n "
+       ">= 2); units: *_pa [Pa], strain [-]\n"
+    << "group," << keys
+    << "n,peak_stress_mean_pa,peak_stress_sd_pa,peak_stress_ci95_pa,strain_at_peak_mean,strain_at_peak_sd,"
+       "strain_at_peak_ci95,initial_modulus_mean_pa,initial_modulus_sd_pa,initial_modulus_ci95_pa\n";
+  std::size_t group = 0;
+  for (std::size_t first = 0; first < members.size(); ++group)
+  {
+    std::size_t last = first;
+    while (last < members.size() && members[last].values == members[first].values)
+      ++last;
+    std::vector<double> peak, strain, modulus;
+    std::size_t n = 0;
+    for (std::size_t i = first; i < last; ++i)
+      if (rows[i].status == "completed")
+      {
+        ++n;
+        peak.push_back(rows[i].peak);
+        strain.push_back(rows[i].strain);
+        modulus.push_back(rows[i].modulus);
+      }
+    s << group << ",";
+    for (const std::string &v : members[first].values)
+      s << v << ",";
+    s << n;
+    for (const Stat &st : {statistics(peak), statistics(strain), statistics(modulus)})
+      s << "," << cell(st.mean) << "," << cell(st.sd) << "," << cell(st.ci95);
+    s << "\n";
+    first = last;
+  }
+  write_atomically(out + "/stats.csv", s.str());
+  return rows;
+}
+
+/// Takes the sweep directory on rank 0: new or empty, or the same sweep's
+/// (resumed), or with --replace a sweep directory emptied.
+void claim_sweep_directory(const std::string &dir, bool replace, const std::vector<Member> &members)
+{
+  std::error_code ec;
+  const fs::file_status status = fs::status(dir, ec);
+  if (!fs::exists(status))
+    return;
+  const std::string named = "sweep directory '" + dir + "'";
+  if (!fs::is_directory(status))
+    throw DeckError(named + " exists and is not a directory: expected a directory for the sweep (--out)");
+  if (fs::directory_iterator(dir, ec) == fs::directory_iterator())
+  {
+    if (ec)
+      throw DeckError(named + " cannot be read (" + ec.message() + "): expected a directory demvv may write");
+    return;
+  }
+  if (!fs::exists(fs::path(dir) / "sweep.json"))
+    throw DeckError(named + " is not empty and holds no sweep.json: expected a new or empty directory (--out), or "
+                            "a sweep's own to resume or replace");
+  if (replace)
+  {
+    std::vector<fs::path> old;
+    for (const fs::directory_entry &entry : fs::directory_iterator(dir))
+      old.push_back(entry.path());
+    for (const fs::path &entry : old)
+      if (fs::remove_all(entry, ec) == static_cast<std::uintmax_t>(-1) || ec)
+        throw OutputError(entry.string() + ": cannot be removed to replace the sweep in " + dir + " (" +
+                          ec.message() + ")");
+    return;
+  }
+  std::vector<std::string> labels, before;
+  for (const Member &m : members)
+    labels.push_back(m.label);
+  try
+  {
+    before = nlohmann::json::parse(read_file(dir + "/sweep.json")).at("members").get<std::vector<std::string>>();
+  }
+  catch (const std::exception &)
+  {
+  }
+  if (before != labels)
+    throw DeckError(named + " holds another sweep (other members): expected the same --vary and --seeds to resume "
+                            "it, or --replace to start it over");
+}
+
+/// Threads for each member: --threads, else OMP_NUM_THREADS, else the
+/// cores shared out among the ranks of this machine.
+int sweep_threads(int requested, int ranks)
+{
+  if (requested > 0 || std::getenv("OMP_NUM_THREADS") || ranks == 1)
+    return apply_threads({"", requested});
+  return apply_threads({"", std::max(1, omp_get_num_procs() / ranks)});
+}
+} // namespace
+
+int command_sweep(const SweepOptions &o)
+{
+  const continuum::ParallelInfo mpi = continuum::parallel_info();
+  const Deck base = Deck::from_file(o.base_deck);
+  const DeckKind *kind = find_deck_kind(base.kind());
+  if (kind->on_every_mpi_rank && mpi.ranks > 1)
+    throw DeckError(o.base_deck + ": a " + base.kind() + " deck runs on every MPI rank, so its members cannot be "
+                    "shared among ranks: expected a sweep without mpirun (its members then run one after another)");
+  if (o.vary.empty() && o.seeds == 0)
+    throw DeckError("sweep of " + o.base_deck + ": nothing varies: expected --vary SECTION/KEY=v1,v2,... or --seeds N");
+  if (o.out_dir.empty())
+    throw DeckError("sweep of " + o.base_deck + ": no --out: expected the sweep directory");
+  std::vector<Varied> varied;
+  std::set<std::string> keys;
+  for (const std::string &arg : o.vary)
+  {
+    varied.push_back(parse_vary(arg, base));
+    if (!keys.insert(varied.back().key).second)
+      throw DeckError("--vary '" + arg + "': '" + varied.back().key + "' is varied twice: expected each key once");
+    if (o.seeds > 0 && varied.back().key.size() >= 5 &&
+        varied.back().key.compare(varied.back().key.size() - 5, 5, "/seed") == 0)
+      throw DeckError("--vary '" + arg + "' with --seeds " + std::to_string(o.seeds) +
+                      ": --seeds sets the seeds: expected one of them");
+  }
+
+  std::vector<Member> members = plan_members(o.base_deck, varied, o.seeds);
+  on_rank_zero_for_all(true, [&] { claim_sweep_directory(o.out_dir, o.replace, members); });
+  const int threads = sweep_threads(o.threads, mpi.ranks);
+  prepare_samples(members, int(mpi.rank), int(mpi.ranks), o.progress);
+  resolve_members(members, o.base_deck, fnv1a_hex(base.resolved()));
+
+  std::vector<bool> kept(members.size());
+  std::size_t n_kept = 0;
+  for (std::size_t i = 0; i < members.size(); ++i)
+    n_kept += (kept[i] = finished(o.out_dir + "/members/" + members[i].label, members[i])) ? 1 : 0;
+
+  nlohmann::json record = {{"command_line", o.command_line},
+                           {"base_deck", o.base_deck},
+                           {"base_deck_hash", fnv1a_hex(base.resolved())},
+                           {"kind", base.kind()},
+                           {"seeds", o.seeds},
+                           {"seed_keys", "bonds/seed; sample/seed of a prepare deck; the sample of a prepare deck "
+                                         "named by sample/file prepared with sample/seed and bonds/seed"},
+                           {"ranks", mpi.ranks},
+                           {"threads_per_rank", threads},
+                           {"provenance", provenance(threads, 0, base.resolved())}};
+  for (const Varied &v : varied)
+    record["varied"].push_back({{"key", v.key}, {"values", v.values}});
+  for (const Member &m : members)
+    record["members"].push_back(m.label);
+  const auto write_record = [&](const std::string &state) {
+    record["status"] = state;
+    write_atomically(o.out_dir + "/sweep.json", json_text(record, 2) + "\n");
+  };
+  if (mpi.rank == 0)
+  {
+    make_directories(o.out_dir + "/members");
+    write_record("running");
+    write_tables(o.out_dir, o.base_deck, varied, members);
+    if (o.progress)
+      std::cerr << "demvv: sweep of " << members.size() << " members: " << n_kept << " kept from an earlier run, "
+                << members.size() - n_kept << " to run on " << mpi.ranks << " rank" << (mpi.ranks > 1 ? "s" : "")
+                << " x " << threads << " thread" << (threads > 1 ? "s" : "") << "\n";
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  Progress progress("sweep", o.progress && mpi.rank == 0, double(n_kept) / double(members.size()));
+  int interrupted = 0;
+  for (std::size_t i = mpi.rank; i < members.size() && !interrupted; i += mpi.ranks)
+  {
+    const Member &m = members[i];
+    if (kept[i])
+      continue;
+    const std::string dir = o.out_dir + "/members/" + m.label;
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    std::string refusal = m.refusal;
+    if (refusal.empty())
+      try
+      {
+        const RunStatus status =
+          kind->run(Deck::from_file(o.base_deck, m.overrides), {dir, threads, false, false, 0, false});
+        interrupted = status.interrupted_by;
+        if (status.fault)
+          std::cerr << "demvv: member " << m.label << ": " << status.diagnostic() << "\n";
+      }
+      catch (const OutputError &)
+      {
+        throw;
+      }
+      catch (const std::runtime_error &e)
+      {
+        refusal = e.what();
+      }
+    if (!refusal.empty())
+    {
+      std::cerr << "demvv: member " << m.label << " refused: " << refusal << "\n";
+      make_directories(dir);
+      write_atomically(dir + "/summary.json",
+                       json_text({{"status", {{"state", "refused"}, {"message", refusal}}},
+                                  {"refused_deck", m.refused_deck},
+                                  {"provenance", provenance(threads, m.seed, m.resolved)}},
+                                 2) +
+                         "\n");
+      if (!m.resolved.empty())
+        write_atomically(dir + "/deck.prm", m.resolved);
+    }
+    if (mpi.rank == 0)
+    {
+      const std::vector<Row> rows = write_tables(o.out_dir, o.base_deck, varied, members);
+      const auto done = std::count_if(rows.begin(), rows.end(), [](const Row &r) { return r.status != "pending"; });
+      progress.update(double(done) / double(members.size()),
+                      std::to_string(done) + " of " + std::to_string(members.size()) + " members");
+    }
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &interrupted, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (mpi.rank != 0)
+    return interrupted ? 128 + interrupted : 0;
+  progress.finish();
+  const std::vector<Row> rows = write_tables(o.out_dir, o.base_deck, varied, members);
+  std::map<std::string, std::size_t> counts;
+  for (const Row &r : rows)
+    ++counts[r.status];
+  nlohmann::json tally = nlohmann::json::object();
+  std::string said;
+  for (const auto &[status, n] : counts)
+  {
+    tally[status] = n;
+    said += (said.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+  }
+  record["members_by_status"] = tally;
+  write_record(interrupted ? "interrupted" : "completed");
+  std::cerr << "demvv: sweep " << (interrupted ? "interrupted" : "done") << ": " << said << " of " << members.size()
+            << " members; table in " << o.out_dir << "/sweep.csv"
+            << (interrupted ? "; rerun the same command to resume" : "") << "\n";
+  return interrupted ? 128 + interrupted : 0;
+}
+} // namespace verify

@@ -1,0 +1,68 @@
+// demvv sweep: one base deck run over the Cartesian product of varied
+// entries and seeds, each member an ordinary run directory.
+//
+//   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N]
+//               --out DIR [--replace] [--threads N] [--quiet]
+//
+// Members are numbered in the order of the product, the first --vary
+// outermost and the seed innermost; member i runs the base deck with its
+// values set as --set would, in DIR/members/<i>_<values>_s<seed>/, through
+// the deck kind's own run function.  A --vary with one value sets that
+// entry for every member (as --set would); a value holding a comma (a
+// vector) cannot be varied.
+//
+// A seed s (--seeds N gives s = 1..N) sets every random seed of the member:
+// `bonds/seed` (strength and removal draws) and `sample/seed` (a prepare
+// deck's placement), where the deck has them; when the deck's sample is a prepare deck (sample/file
+// names a .prm), that deck is prepared again with sample/seed = s (and its
+// own bonds/seed = s), cached as any prepared sample is, and the member
+// reads that sample (its deck.prm names the cached sample.json).  So every
+// seed has its own packing and its own strengths.  A sample file (.json)
+// keeps its packing and its bonds: a seed then changes only draws the run
+// itself makes (bonds installed by the run).  Without --seeds, the seeds
+// are the deck's.
+//
+// DIR/sweep.csv has a row per member (values, seed, status, peak stress,
+// strain at peak, initial modulus, Poisson's ratio, bond breakage at the
+// peak, run time); DIR/stats.csv has, per set of varied values, the mean,
+// standard deviation and 95 % Student-t confidence half-width over the
+// completed seeds.  Both are built from the members' run directories alone
+// (summary.json, series.csv), rewritten atomically as members complete.  A
+// member that faults or whose deck is refused is a row with its status
+// and message; the others go on.  DIR/sweep.json holds the provenance.
+//
+// Rerunning the same sweep into DIR resumes it: a member whose directory
+// holds a completed summary.json of the same resolved deck (deck.prm) is
+// kept, every other one runs (again).  --replace starts a sweep directory
+// over; a non-empty directory that holds no sweep.json is never touched.
+//
+// Under `mpirun -np K` the ranks share the members round-robin by index
+// (member i on rank i mod K), each member on one rank with its threads, so
+// results do not depend on K; rank 0 writes the tables.  Samples are
+// prepared first, each on one rank.  Kinds that run on every MPI rank (the
+// continuum cylinder, mms) are refused under more than one rank, and a
+// kind that refuses mpirun itself (compare) has its members refused there.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace verify
+{
+struct SweepOptions
+{
+  std::string base_deck;
+  std::vector<std::string> vary; ///< "SECTION/KEY=v1,v2,..."
+  int seeds = 0;                 ///< 0: the deck's own seeds
+  std::string out_dir;
+  bool replace = false;
+  int threads = 0;
+  bool progress = true;
+  std::string command_line;      ///< as typed, for sweep.json
+};
+
+/// Runs (or resumes) a sweep; returns 0, or 128 + signal when interrupted.
+/// Bad input (the base deck, a --vary, a directory holding something else)
+/// is a DeckError before any member runs.
+int command_sweep(const SweepOptions &options);
+} // namespace verify
