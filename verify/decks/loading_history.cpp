@@ -165,32 +165,6 @@ double LoadingHistory::axial_stress(double t) const
   return hold_stress * std::min(1.0, t / ramp_time);
 }
 
-continuum::History LoadingHistory::ode_history() const
-{
-  const LoadingHistory h = *this;
-  if (stress_controlled())
-    return continuum::History::general([h](double t) { return h.axial_stress(t); },
-                                       [h](double t, double p) { return h.rate_on_piece(t, p); }, kinks(),
-                                       largest_prescribed());
-  return continuum::History::general([h](double t) { return h.axial_strain(t); },
-                                     [h](double t, double p) { return h.rate_on_piece(t, p); }, kinks(),
-                                     largest_prescribed());
-}
-
-void LoadingHistory::apply_to(continuum::CylinderSpec &cylinder) const
-{
-  cylinder.strain_rate = strain_rate;
-  cylinder.final_strain = final_strain;
-  if (kind == Kind::constant_rate && ramp_time == 0)
-    return;
-  const LoadingHistory h = *this;
-  if (stress_controlled())
-    cylinder.axial_stress_history = [h](double t) { return h.axial_stress(t); };
-  else
-    cylinder.axial_strain_history = [h](double t) { return h.axial_strain(t); };
-  cylinder.duration = duration();
-}
-
 std::string LoadingHistory::name() const
 {
   return kind_names[static_cast<std::size_t>(kind)];

@@ -22,9 +22,6 @@
 
 #include "verify/decks/deck.h"
 
-#include "continuum/burgers_ode.h"
-#include "continuum/cylinder.h"
-
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -77,16 +74,6 @@ struct LoadingHistory
   double duration() const;
   /// Time at which the hold (creep, relaxation) or the cycling begins [s]; 0 for constant rate.
   double hold_start() const;
-  /// The prescribed quantity as the CVODE chain takes it (strain, or
-  /// stress under force control for creep).
-  continuum::History ode_history() const;
-  continuum::Control ode_control() const
-  {
-    return stress_controlled() ? continuum::Control::force : continuum::Control::displacement;
-  }
-  /// Gives the cylinder this history (a schedule and the duration); a
-  /// constant-rate history without a ramp keeps the cylinder's own rate.
-  void apply_to(continuum::CylinderSpec &cylinder) const;
   std::string name() const;
   nlohmann::json to_json() const;
 

@@ -1,6 +1,7 @@
 #include "verify/kinds/compare.h"
 
 #include "verify/io/output.h"
+#include "verify/kinds/continuum_cylinder.h"
 #include "verify/run/analysis.h"
 
 #include "continuum/cylinder.h"
@@ -290,7 +291,7 @@ CompareResult run_compare(const CompareSpec &spec, const RunOptions &options)
   test.degree = spec.degree;
   test.refinements = spec.refinements;
   test.time_steps = spec.time_steps;
-  history.apply_to(test);
+  apply_history(history, test);
   if (!test.axial_strain_history && !test.axial_stress_history)
   {
     // A constant rate from rest: the same schedule as a function, so every

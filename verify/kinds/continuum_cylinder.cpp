@@ -74,6 +74,30 @@ void declare_cylinder(DeckSchema &s)
   s.leave();
 }
 
+continuum::History ode_history(const LoadingHistory &h)
+{
+  if (h.stress_controlled())
+    return continuum::History::general([h](double t) { return h.axial_stress(t); },
+                                       [h](double t, double p) { return h.rate_on_piece(t, p); }, h.kinks(),
+                                       h.largest_prescribed());
+  return continuum::History::general([h](double t) { return h.axial_strain(t); },
+                                     [h](double t, double p) { return h.rate_on_piece(t, p); }, h.kinks(),
+                                     h.largest_prescribed());
+}
+
+void apply_history(const LoadingHistory &h, continuum::CylinderSpec &cylinder)
+{
+  cylinder.strain_rate = h.strain_rate;
+  cylinder.final_strain = h.final_strain;
+  if (h.kind == LoadingHistory::Kind::constant_rate && h.ramp_time == 0)
+    return;
+  if (h.stress_controlled())
+    cylinder.axial_stress_history = [h](double t) { return h.axial_stress(t); };
+  else
+    cylinder.axial_strain_history = [h](double t) { return h.axial_strain(t); };
+  cylinder.duration = h.duration();
+}
+
 CylinderGeometry parse_cylinder_geometry(const Deck &deck)
 {
   const CylinderGeometry g{deck.real("geometry/radius"), deck.real("geometry/height")};
@@ -119,7 +143,7 @@ std::vector<continuum::OdeState> history_reference(const LoadingHistory &history
 {
   if (!test.axial_strain_history && !test.axial_stress_history)
     return {};
-  const continuum::BurgersOde ode(test.solid.uniaxial(), history.ode_control(), history.ode_history());
+  const continuum::BurgersOde ode(test.solid.uniaxial(), ode_control(history), ode_history(history));
   std::vector<double> times;
   for (unsigned int n = 0; n <= test.time_steps; ++n)
     times.push_back(test.duration * n / test.time_steps);
@@ -309,7 +333,7 @@ CylinderDeckSpec parse_cylinder(const Deck &deck)
   test.platens = deck.text("loading/platens") == "bonded" ? continuum::Platens::bonded
                                                            : continuum::Platens::frictionless;
   spec.history = LoadingHistory::parse(deck);
-  spec.history.apply_to(test);
+  apply_history(spec.history, test);
   test.time_steps = static_cast<unsigned int>(deck.integer("discretisation/time steps"));
   test.geometry = deck.text("discretisation/model") == "3d" ? continuum::Geometry::three_dimensional
                                                             : continuum::Geometry::axisymmetric;

@@ -24,6 +24,7 @@
 #include "verify/run/run.h"
 #include "verify/io/series.h"
 
+#include "continuum/burgers_ode.h"
 #include "continuum/cylinder.h"
 
 #include <nlohmann/json.hpp>
@@ -46,6 +47,17 @@ struct CylinderGeometry
 };
 
 CylinderGeometry parse_cylinder_geometry(const Deck &deck);
+
+/// A loading history as the CVODE chain takes it (strain, or stress under
+/// force control for creep).
+continuum::History ode_history(const LoadingHistory &history);
+inline continuum::Control ode_control(const LoadingHistory &history)
+{
+  return history.stress_controlled() ? continuum::Control::force : continuum::Control::displacement;
+}
+/// Gives the cylinder the history (a schedule and the duration); a
+/// constant-rate history without a ramp keeps the cylinder's own rate.
+void apply_history(const LoadingHistory &history, continuum::CylinderSpec &cylinder);
 
 /// A cylinder deck, parsed and validated: the compression test at the
 /// deck's own refinement level and what the run makes of it (a single run,
