@@ -466,31 +466,15 @@ std::vector<Row> write_tables(const std::string &out, const std::string &base_pa
 /// (resumed), or with --replace a sweep directory emptied.
 void claim_sweep_directory(const std::string &dir, bool replace, const std::vector<Member> &members)
 {
-  std::error_code ec;
-  const fs::file_status status = fs::status(dir, ec);
-  if (!fs::exists(status))
-    return;
   const std::string named = "sweep directory '" + dir + "'";
-  if (!fs::is_directory(status))
-    throw DeckError(named + " exists and is not a directory: expected a directory for the sweep (--out)");
-  if (fs::directory_iterator(dir, ec) == fs::directory_iterator())
-  {
-    if (ec)
-      throw DeckError(named + " cannot be read (" + ec.message() + "): expected a directory demvv may write");
+  if (!holds_entries(dir, named, "the sweep"))
     return;
-  }
   if (!fs::exists(fs::path(dir) / "sweep.json"))
     throw DeckError(named + " is not empty and holds no sweep.json: expected a new or empty directory (--out), or "
                             "a sweep's own to resume or replace");
   if (replace)
   {
-    std::vector<fs::path> old;
-    for (const fs::directory_entry &entry : fs::directory_iterator(dir))
-      old.push_back(entry.path());
-    for (const fs::path &entry : old)
-      if (fs::remove_all(entry, ec) == static_cast<std::uintmax_t>(-1) || ec)
-        throw OutputError(entry.string() + ": cannot be removed to replace the sweep in " + dir + " (" +
-                          ec.message() + ")");
+    empty_directory(dir, "the sweep");
     return;
   }
   std::vector<std::string> labels, before;

@@ -45,20 +45,39 @@ int RunStatus::exit_code() const
   return interrupted_by ? 128 + interrupted_by : 0;
 }
 
-void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate)
+bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding)
 {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(dir, ec);
   if (!fs::exists(status))
-    return;
-  const std::string named = "run directory '" + dir + "'";
+    return false;
   if (!fs::is_directory(status))
-    throw DeckError(named + " exists and is not a directory: expected a directory for the run's files (--out)");
+    throw DeckError(named + " exists and is not a directory: expected a directory for " + holding + " (--out)");
   fs::directory_iterator entries(dir, ec);
   if (ec)
     throw DeckError(named + " cannot be read (" + ec.message() + "): expected a directory demvv may write (--out)");
-  if (entries == fs::directory_iterator())
+  return entries != fs::directory_iterator();
+}
+
+void empty_directory(const std::string &dir, const std::string &what)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<fs::path> old;
+  for (const fs::directory_entry &entry : fs::directory_iterator(dir))
+    old.push_back(entry.path());
+  for (const fs::path &entry : old)
+    if (fs::remove_all(entry, ec) == static_cast<std::uintmax_t>(-1) || ec)
+      throw OutputError(entry.string() + ": cannot be removed to replace " + what + " in " + dir + " (" +
+                        ec.message() + ")");
+}
+
+void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate)
+{
+  namespace fs = std::filesystem;
+  const std::string named = "run directory '" + dir + "'";
+  if (!holds_entries(dir, named, "the run's files"))
     return;
   if (!replace)
     throw DeckError(named + " is not empty: expected a new or empty directory (--out), or --replace to replace "
@@ -67,13 +86,7 @@ void claim_run_directory(const std::string &dir, bool replace, const std::functi
     throw DeckError(named + " is not empty and holds no deck.prm, so it is no run directory: --replace replaces "
                             "only a run directory: expected a run directory or a new or empty one (--out)");
   validate();
-  std::vector<fs::path> old;
-  for (const fs::directory_entry &entry : entries)
-    old.push_back(entry.path());
-  for (const fs::path &entry : old)
-    if (fs::remove_all(entry, ec) == static_cast<std::uintmax_t>(-1) || ec)
-      throw OutputError(entry.string() + ": cannot be removed to replace the run in " + dir + " (" + ec.message() +
-                        ")");
+  empty_directory(dir, "the run");
 }
 
 void record_fault(RunStatus &status, const dem::NumericalFault &fault)

@@ -115,6 +115,13 @@ private:
 /// directory without deck.prm is never emptied.  A path that is no
 /// directory is refused.  OutputError when an entry cannot be removed.
 void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate);
+/// True when `dir` exists and holds entries, false when it is absent or
+/// empty; DeckError when it is no directory or cannot be read.  `named`
+/// names it in errors ("run directory 'x'"), `holding` says what it is for.
+bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding);
+/// Removes everything inside `dir`; OutputError naming the entry that
+/// would not go and `what` is being replaced ("the run").
+void empty_directory(const std::string &dir, const std::string &what);
 
 /// Records a fault into a status (from a NumericalFault).
 void record_fault(RunStatus &status, const dem::NumericalFault &fault);
