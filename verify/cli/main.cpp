@@ -76,9 +76,9 @@ int main(int argc, char **argv)
                         "Run each combination with seeds 1..N (bond strengths and, for a sample from a prepare "
                         "deck, the packing); default: the deck's own seeds")
     ->check(CLI::Range(1, 100000));
-  sweep_cmd->add_option("--out", sweep.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")->required();
-  sweep_cmd->add_flag("--replace", sweep.replace, "Start the sweep in --out over (only a sweep directory is emptied)");
-  sweep_cmd->add_option("--threads", sweep.threads,
+  sweep_cmd->add_option("--out", sweep.settings.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")->required();
+  sweep_cmd->add_flag("--replace", sweep.settings.replace, "Start the sweep in --out over (only a sweep directory is emptied)");
+  sweep_cmd->add_option("--threads", sweep.settings.threads,
                         "OpenMP threads per member (default: OMP_NUM_THREADS, else the idle cores, shared among "
                         "MPI ranks)")
     ->check(CLI::Range(1, 1024));
@@ -157,9 +157,9 @@ int main(int argc, char **argv)
     }
     if (sweep_cmd->parsed())
     {
-      sweep.progress = !sweep_quiet;
+      sweep.settings.progress = !sweep_quiet;
       for (int i = 0; i < argc; ++i)
-        sweep.command_line += (i ? " " : "") + std::string(argv[i]);
+        sweep.settings.command_line += (i ? " " : "") + std::string(argv[i]);
       return verify::command_sweep(sweep);
     }
     if (defaults->parsed())

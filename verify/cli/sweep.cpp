@@ -53,29 +53,6 @@ struct Member
   std::string refused_deck;        ///< a refused member's identity: the base deck's hash and the overrides
 };
 
-/// One member's row, read from its run directory.
-struct Row
-{
-  std::string status = "pending";
-  std::string message;
-  double peak = nan, strain = nan, modulus = nan, poisson = nan, broken = nan, seconds = nan;
-};
-
-/// True when a deck of this kind declares `key` (the deck reader treats an
-/// undeclared key as a bug, so this asks without that).
-bool declares(const Deck &deck, const std::string &key)
-{
-  try
-  {
-    deck.text(key);
-    return true;
-  }
-  catch (const std::logic_error &)
-  {
-    return false;
-  }
-}
-
 std::vector<std::string> split(const std::string &text, char by)
 {
   std::vector<std::string> parts;
@@ -101,7 +78,7 @@ Varied parse_vary(const std::string &arg, const Deck &base)
   const std::string key = eq == std::string::npos ? "" : trimmed(arg.substr(0, eq));
   if (key.empty() || key.find('/') == std::string::npos)
     throw DeckError("--vary '" + arg + "': expected SECTION/KEY=v1,v2,... (a deck entry and its values)");
-  if (!declares(base, key))
+  if (!deck_declares(base, key))
     throw DeckError("--vary '" + arg + "': " + base.path() + " (kind " + base.kind() + ") has no entry '" + key +
                     "': expected an entry that `demvv defaults " + base.kind() + "` lists");
   Varied v{key, {}};
@@ -130,35 +107,27 @@ bool is_prepare_deck(const std::string &file)
   return file.size() > 4 && file.compare(file.size() - 4, 4, ".prm") == 0;
 }
 
-/// The members in product order (first --vary outermost, seed innermost),
-/// each with its overrides; the sample a seed re-prepares is named, not yet
-/// prepared.
-std::vector<Member> plan_members(const std::string &base_path, const std::vector<Varied> &varied, int seeds)
+/// The members, point after point and seed innermost, each with its
+/// overrides; the sample a seed re-prepares is named, not yet prepared.
+std::vector<Member> plan_members(const SweepPlan &plan)
 {
-  std::size_t count = std::max(seeds, 1);
-  for (const Varied &v : varied)
-    count *= v.values.size();
-  const std::size_t width = std::to_string(count - 1).size();
+  const std::string &base_path = plan.base_deck;
+  const int seeds = plan.seeds;
+  const std::size_t count = std::max(seeds, 1) * plan.points.size();
+  const std::size_t width = std::to_string(count == 0 ? 0 : count - 1).size();
   std::vector<Member> members(count);
   for (std::size_t i = 0; i < count; ++i)
   {
     Member &m = members[i];
     m.index = i;
-    std::size_t rest = i;
-    m.seed = seeds > 0 ? int(rest % std::size_t(seeds)) + 1 : 0;
-    rest /= std::size_t(std::max(seeds, 1));
-    m.values.resize(varied.size());
-    for (std::size_t k = varied.size(); k-- > 0;)
-    {
-      m.values[k] = varied[k].values[rest % varied[k].values.size()];
-      rest /= varied[k].values.size();
-    }
+    m.seed = seeds > 0 ? int(i % std::size_t(seeds)) + 1 : 0;
+    m.values = plan.points[i / std::size_t(std::max(seeds, 1))];
     const std::string number = std::to_string(i);
     m.label = std::string(width - number.size(), '0') + number;
-    for (std::size_t k = 0; k < varied.size(); ++k)
+    for (std::size_t k = 0; k < plan.keys.size(); ++k)
     {
       m.label += "_" + folder_part(m.values[k]);
-      m.overrides.push_back(varied[k].key + "=" + m.values[k]);
+      m.overrides.push_back(plan.keys[k] + "=" + m.values[k]);
     }
     if (m.seed > 0)
       m.label += "_s" + std::to_string(m.seed);
@@ -169,17 +138,17 @@ std::vector<Member> plan_members(const std::string &base_path, const std::vector
     {
       const Deck deck = Deck::from_file(base_path, m.overrides);
       const std::string s = std::to_string(m.seed);
-      if (declares(deck, "bonds/seed"))
+      if (deck_declares(deck, "bonds/seed"))
         m.overrides.push_back("bonds/seed=" + s);
-      if (declares(deck, "sample/seed"))
+      if (deck_declares(deck, "sample/seed"))
         m.overrides.push_back("sample/seed=" + s);
-      const bool from_file = !declares(deck, "sample/source") || deck.text("sample/source") == "file";
-      if (from_file && declares(deck, "sample/file") && is_prepare_deck(deck.text("sample/file")))
+      const bool from_file = !deck_declares(deck, "sample/source") || deck.text("sample/source") == "file";
+      if (from_file && deck_declares(deck, "sample/file") && is_prepare_deck(deck.text("sample/file")))
       {
         m.prepare_deck = deck.file("sample/file");
         const Deck prepare = Deck::from_file(m.prepare_deck);
         m.prepare_overrides = {"sample/seed=" + s};
-        if (declares(prepare, "bonds/seed"))
+        if (deck_declares(prepare, "bonds/seed"))
           m.prepare_overrides.push_back("bonds/seed=" + s);
       }
     }
@@ -289,9 +258,9 @@ double broken_at_peak(const std::string &dir, const nlohmann::json &summary)
 
 /// A member's row from its run directory: pending while the directory
 /// holds no summary of this member's deck.
-Row read_row(const std::string &dir, const Member &m)
+SweepRow read_row(const std::string &dir, const Member &m)
 {
-  Row row;
+  SweepRow row;
   nlohmann::json summary;
   try
   {
@@ -395,15 +364,15 @@ Stat statistics(const std::vector<double> &all)
 
 /// Writes sweep.csv and stats.csv from the members' directories; returns
 /// the rows.
-std::vector<Row> write_tables(const std::string &out, const std::string &base_path, const std::vector<Varied> &varied,
-                              const std::vector<Member> &members)
+std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan, const std::vector<Member> &members)
 {
-  std::vector<Row> rows;
+  std::vector<SweepRow> rows;
   for (const Member &m : members)
     rows.push_back(read_row(out + "/members/" + m.label, m));
+  const std::string &base_path = plan.base_deck;
   std::string keys;
-  for (const Varied &v : varied)
-    keys += v.key + ",";
+  for (const std::string &k : plan.keys)
+    keys += k + ",";
   std::ostringstream t;
   t << "# demvv sweep of " << base_path
     << ": one row per member; units: peak_stress_pa [Pa], strain_at_peak [-], initial_modulus_pa [Pa], "
@@ -415,7 +384,7 @@ std::vector<Row> write_tables(const std::string &out, const std::string &base_pa
   for (std::size_t i = 0; i < members.size(); ++i)
   {
     const Member &m = members[i];
-    const Row &r = rows[i];
+    const SweepRow &r = rows[i];
     t << m.index << ",";
     for (const std::string &v : m.values)
       t << v << ",";
@@ -502,36 +471,35 @@ int sweep_threads(int requested, int ranks)
 }
 } // namespace
 
-int command_sweep(const SweepOptions &o)
+bool deck_declares(const Deck &deck, const std::string &key)
+{
+  try
+  {
+    deck.text(key);
+    return true;
+  }
+  catch (const std::logic_error &)
+  {
+    return false;
+  }
+}
+
+SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
 {
   const continuum::ParallelInfo mpi = continuum::parallel_info();
-  const Deck base = Deck::from_file(o.base_deck);
+  const Deck base = Deck::from_file(plan.base_deck);
   const DeckKind *kind = find_deck_kind(base.kind());
   if (kind->on_every_mpi_rank && mpi.ranks > 1)
-    throw DeckError(o.base_deck + ": a " + base.kind() + " deck runs on every MPI rank, so its members cannot be "
+    throw DeckError(plan.base_deck + ": a " + base.kind() + " deck runs on every MPI rank, so its members cannot be "
                     "shared among ranks: expected a sweep without mpirun (its members then run one after another)");
-  if (o.vary.empty() && o.seeds == 0)
-    throw DeckError("sweep of " + o.base_deck + ": nothing varies: expected --vary SECTION/KEY=v1,v2,... or --seeds N");
   if (o.out_dir.empty())
-    throw DeckError("sweep of " + o.base_deck + ": no --out: expected the sweep directory");
-  std::vector<Varied> varied;
-  std::set<std::string> keys;
-  for (const std::string &arg : o.vary)
-  {
-    varied.push_back(parse_vary(arg, base));
-    if (!keys.insert(varied.back().key).second)
-      throw DeckError("--vary '" + arg + "': '" + varied.back().key + "' is varied twice: expected each key once");
-    if (o.seeds > 0 && varied.back().key.size() >= 5 &&
-        varied.back().key.compare(varied.back().key.size() - 5, 5, "/seed") == 0)
-      throw DeckError("--vary '" + arg + "' with --seeds " + std::to_string(o.seeds) +
-                      ": --seeds sets the seeds: expected one of them");
-  }
+    throw DeckError("sweep of " + plan.base_deck + ": no --out: expected the sweep directory");
 
-  std::vector<Member> members = plan_members(o.base_deck, varied, o.seeds);
+  std::vector<Member> members = plan_members(plan);
   on_rank_zero_for_all(true, [&] { claim_sweep_directory(o.out_dir, o.replace, members); });
   const int threads = sweep_threads(o.threads, mpi.ranks);
   prepare_samples(members, int(mpi.rank), int(mpi.ranks), o.progress);
-  resolve_members(members, o.base_deck, fnv1a_hex(base.resolved()));
+  resolve_members(members, plan.base_deck, fnv1a_hex(base.resolved()));
 
   std::vector<bool> kept(members.size());
   std::size_t n_kept = 0;
@@ -539,17 +507,17 @@ int command_sweep(const SweepOptions &o)
     n_kept += (kept[i] = finished(o.out_dir + "/members/" + members[i].label, members[i])) ? 1 : 0;
 
   nlohmann::json record = {{"command_line", o.command_line},
-                           {"base_deck", o.base_deck},
+                           {"base_deck", plan.base_deck},
                            {"base_deck_hash", fnv1a_hex(base.resolved())},
                            {"kind", base.kind()},
-                           {"seeds", o.seeds},
+                           {"seeds", plan.seeds},
                            {"seed_keys", "bonds/seed; sample/seed of a prepare deck; the sample of a prepare deck "
                                          "named by sample/file prepared with sample/seed and bonds/seed"},
                            {"ranks", mpi.ranks},
                            {"threads_per_rank", threads},
+                           {"keys", plan.keys},
+                           {"points", plan.points},
                            {"provenance", provenance(threads, 0, base.resolved())}};
-  for (const Varied &v : varied)
-    record["varied"].push_back({{"key", v.key}, {"values", v.values}});
   for (const Member &m : members)
     record["members"].push_back(m.label);
   const auto write_record = [&](const std::string &state) {
@@ -560,14 +528,13 @@ int command_sweep(const SweepOptions &o)
   {
     make_directories(o.out_dir + "/members");
     write_record("running");
-    write_tables(o.out_dir, o.base_deck, varied, members);
+    write_tables(o.out_dir, plan, members);
     if (o.progress)
       std::cerr << "demvv: sweep of " << members.size() << " members: " << n_kept << " kept from an earlier run, "
                 << members.size() - n_kept << " to run on " << mpi.ranks << " rank" << (mpi.ranks > 1 ? "s" : "")
                 << " x " << threads << " thread" << (threads > 1 ? "s" : "") << "\n";
   }
   MPI_Barrier(MPI_COMM_WORLD);
-
   Progress progress("sweep", o.progress && mpi.rank == 0, double(n_kept) / double(members.size()));
   int interrupted = 0;
   for (std::size_t i = mpi.rank; i < members.size() && !interrupted; i += mpi.ranks)
@@ -583,7 +550,7 @@ int command_sweep(const SweepOptions &o)
       try
       {
         const RunStatus status =
-          kind->run(Deck::from_file(o.base_deck, m.overrides), {dir, threads, false, false, 0, false});
+          kind->run(Deck::from_file(plan.base_deck, m.overrides), {dir, threads, false, false, 0, false});
         interrupted = status.interrupted_by;
         if (status.fault)
           std::cerr << "demvv: member " << m.label << ": " << status.diagnostic() << "\n";
@@ -611,19 +578,25 @@ int command_sweep(const SweepOptions &o)
     }
     if (mpi.rank == 0)
     {
-      const std::vector<Row> rows = write_tables(o.out_dir, o.base_deck, varied, members);
-      const auto done = std::count_if(rows.begin(), rows.end(), [](const Row &r) { return r.status != "pending"; });
+      const std::vector<SweepRow> rows = write_tables(o.out_dir, plan, members);
+      const auto done = std::count_if(rows.begin(), rows.end(), [](const SweepRow &r) { return r.status != "pending"; });
       progress.update(double(done) / double(members.size()),
                       std::to_string(done) + " of " + std::to_string(members.size()) + " members");
     }
   }
   MPI_Allreduce(MPI_IN_PLACE, &interrupted, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  SweepOutcome outcome;
+  outcome.exit_code = interrupted ? 128 + interrupted : 0;
   if (mpi.rank != 0)
-    return interrupted ? 128 + interrupted : 0;
+  {
+    for (const Member &m : members)
+      outcome.rows.push_back(read_row(o.out_dir + "/members/" + m.label, m));
+    return outcome;
+  }
   progress.finish();
-  const std::vector<Row> rows = write_tables(o.out_dir, o.base_deck, varied, members);
+  outcome.rows = write_tables(o.out_dir, plan, members);
   std::map<std::string, std::size_t> counts;
-  for (const Row &r : rows)
+  for (const SweepRow &r : outcome.rows)
     ++counts[r.status];
   nlohmann::json tally = nlohmann::json::object();
   std::string said;
@@ -634,9 +607,37 @@ int command_sweep(const SweepOptions &o)
   }
   record["members_by_status"] = tally;
   write_record(interrupted ? "interrupted" : "completed");
-  std::cerr << "demvv: sweep " << (interrupted ? "interrupted" : "done") << ": " << said << " of " << members.size()
-            << " members; table in " << o.out_dir << "/sweep.csv"
-            << (interrupted ? "; rerun the same command to resume" : "") << "\n";
-  return interrupted ? 128 + interrupted : 0;
+  std::cerr << "demvv: sweep " << (interrupted ? "interrupted" : "done") << ": " << said << " of "
+              << members.size() << " members; table in " << o.out_dir << "/sweep.csv"
+              << (interrupted ? "; rerun the same command to resume" : "") << "\n";
+  return outcome;
+}
+
+int command_sweep(const SweepOptions &o)
+{
+  const Deck base = Deck::from_file(o.base_deck);
+  if (o.vary.empty() && o.seeds == 0)
+    throw DeckError("sweep of " + o.base_deck + ": nothing varies: expected --vary SECTION/KEY=v1,v2,... or --seeds N");
+  SweepPlan plan{o.base_deck, {}, {{}}, o.seeds};
+  for (const std::string &arg : o.vary)
+  {
+    const Varied v = parse_vary(arg, base);
+    if (std::find(plan.keys.begin(), plan.keys.end(), v.key) != plan.keys.end())
+      throw DeckError("--vary '" + arg + "': '" + v.key + "' is varied twice: expected each key once");
+    if (o.seeds > 0 && v.key.size() >= 5 && v.key.compare(v.key.size() - 5, 5, "/seed") == 0)
+      throw DeckError("--vary '" + arg + "' with --seeds " + std::to_string(o.seeds) +
+                      ": --seeds sets the seeds: expected one of them");
+    // The product, the first --vary outermost.
+    std::vector<std::vector<std::string>> points;
+    for (const std::vector<std::string> &point : plan.points)
+      for (const std::string &value : v.values)
+      {
+        points.push_back(point);
+        points.back().push_back(value);
+      }
+    plan.keys.push_back(v.key);
+    plan.points = points;
+  }
+  return run_sweep(plan, o.settings).exit_code;
 }
 } // namespace verify

@@ -44,25 +44,76 @@
 // kind that refuses mpirun itself (compare) has its members refused there.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace verify
 {
+class Deck;
+
+/// Where and how a sweep's members run.
+struct SweepSettings
+{
+  std::string out_dir;
+  bool replace = false;
+  int threads = 0;
+  bool progress = true;
+  std::string command_line; ///< as typed, for sweep.json
+};
+
 struct SweepOptions
 {
   std::string base_deck;
   std::vector<std::string> vary; ///< "SECTION/KEY=v1,v2,..."
   int seeds = 0;                 ///< 0: the deck's own seeds
-  std::string out_dir;
-  bool replace = false;
-  int threads = 0;
-  bool progress = true;
-  std::string command_line;      ///< as typed, for sweep.json
+  SweepSettings settings;
 };
+
+/// What a sweep runs: the base deck at each point (one value per key, set
+/// as --set would), each point with seeds 1..seeds (0: the deck's own).
+/// `demvv sweep` makes the points the product of its --vary values; the
+/// calibration makes them its trial parameters and their finite-difference
+/// neighbours.
+struct SweepPlan
+{
+  std::string base_deck;
+  std::vector<std::string> keys;
+  std::vector<std::vector<std::string>> points;
+  int seeds = 0;
+};
+
+/// One member's outcome, read from its run directory: status "pending",
+/// "completed", "fault", "refused", "interrupted"; the measured quantities
+/// NaN unless completed.
+struct SweepRow
+{
+  std::string status = "pending";
+  std::string message;
+  double peak = std::numeric_limits<double>::quiet_NaN();    ///< peak axial stress [Pa]
+  double strain = std::numeric_limits<double>::quiet_NaN();  ///< axial strain at the peak [-]
+  double modulus = std::numeric_limits<double>::quiet_NaN(); ///< initial (fitted) modulus [Pa]
+  double poisson = std::numeric_limits<double>::quiet_NaN(); ///< Poisson's ratio [-]
+  double broken = std::numeric_limits<double>::quiet_NaN();  ///< bonds broken at the peak [-]
+  double seconds = std::numeric_limits<double>::quiet_NaN(); ///< run time [s]
+};
+
+struct SweepOutcome
+{
+  int exit_code = 0;            ///< 0, or 128 + signal when interrupted
+  std::vector<SweepRow> rows;   ///< one per member: point after point, seed innermost (on every rank)
+};
+
+/// Runs (or resumes) the members of a plan in settings.out_dir.  Bad input
+/// (the base deck, a key, a directory holding something else) is a
+/// DeckError before any member runs.
+SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &settings);
 
 /// Runs (or resumes) a sweep; returns 0, or 128 + signal when interrupted.
 /// Bad input (the base deck, a --vary, a directory holding something else)
 /// is a DeckError before any member runs.
 int command_sweep(const SweepOptions &options);
+
+/// True when a deck of this kind declares `key`.
+bool deck_declares(const Deck &deck, const std::string &key);
 } // namespace verify
