@@ -2,6 +2,7 @@
 //
 //   demvv run DECK [--out DIR [--replace]] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
 //   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
+//   demvv calibrate BASE_DECK --fit KEY[+KEY...]=START --target QUANTITY=VALUE[,U] [--at KEY=VALUE] [--seeds N] --out DIR
 //   demvv defaults KIND
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
 //   demvv bench [--particles N] [--steps N] [--threads N]
@@ -11,12 +12,14 @@
 // Exit codes: 0 success; 1 a verification check failed; 2 bad input or
 // usage, including input that needs more memory than the machine has (most
 // refused before allocating, any other allocation failure caught here);
-// 3 the simulation stopped on a numerical fault; 4 an output could not be
+// 3 the simulation stopped on a numerical fault (or a calibration did not
+// reach its targets); 4 an output could not be
 // written (a full disk: file and system reason named, rows before it whole);
 // 130 / 143 the run was interrupted by SIGINT / SIGTERM (outputs kept,
 // checkpoint written).
 #include "verify/cli/bench.h"
 #include "verify/cli/commands.h"
+#include "verify/cli/calibrate.h"
 #include "verify/cli/sweep.h"
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
@@ -85,6 +88,49 @@ int main(int argc, char **argv)
   bool sweep_quiet = false;
   sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");
   sweep_cmd->footer(kinds_help);
+
+  verify::CalibrationOptions calibration;
+  auto *calibrate_cmd = app.add_subcommand(
+    "calibrate", "Fit deck parameters to target quantities of uniaxial runs at one condition (GSL nonlinear least "
+                 "squares over seed ensembles); calibration.json, evaluations.csv and fitted.prm in --out (rerun to "
+                 "resume)");
+  calibrate_cmd->add_option("BASE_DECK", calibration.base_deck, "The uniaxial deck every evaluation starts from")
+    ->required();
+  calibrate_cmd->add_option("--fit", calibration.fit,
+                            "KEY[+KEY...]=START: deck entries that take one fitted positive value, and its start "
+                            "(repeatable)")
+    ->required();
+  calibrate_cmd->add_option("--target", calibration.targets,
+                            "QUANTITY=VALUE[,UNCERTAINTY]: peak_stress_pa [Pa], strain_at_peak [-], "
+                            "initial_modulus_pa [Pa] or poisson_ratio [-], its target and the target's standard "
+                            "uncertainty (repeatable)")
+    ->required();
+  calibrate_cmd->add_option("--at", calibration.at,
+                            "KEY=VALUE: the calibration condition, set in every evaluation as --set would "
+                            "(repeatable)");
+  calibrate_cmd->add_option("--seeds", calibration.seeds, "Seeds per evaluation (default 3)")
+    ->check(CLI::Range(2, 100000));
+  calibrate_cmd->add_option("--first-seed", calibration.first_seed,
+                            "The seeds are K ... K + N - 1 (default 1; another K: another seed set)")
+    ->check(CLI::Range(1, 1000000));
+  calibrate_cmd->add_option("--step", calibration.step,
+                            "Finite-difference step in ln(value) for the Jacobian (default 0.05; doubled where the "
+                            "slope is lost in the seed noise)");
+  calibrate_cmd->add_option("--tolerance", calibration.tolerance,
+                            "Relative residual that meets a target even when the seed noise is smaller (default "
+                            "0.005)");
+  calibrate_cmd->add_option("--max-iterations", calibration.max_iterations, "Iterations at most (default 10)");
+  calibrate_cmd->add_option("--out", calibration.settings.out_dir,
+                            "Calibration directory: new, empty, or this calibration's (resumed)")
+    ->required();
+  calibrate_cmd->add_flag("--replace", calibration.settings.replace,
+                          "Start the calibration in --out over (only a calibration directory is emptied)");
+  calibrate_cmd->add_option("--threads", calibration.settings.threads,
+                            "OpenMP threads per run (default: OMP_NUM_THREADS, else the idle cores, shared among "
+                            "MPI ranks)")
+    ->check(CLI::Range(1, 1024));
+  bool calibrate_quiet = false;
+  calibrate_cmd->add_flag("--quiet", calibrate_quiet, "No progress lines for the evaluations' members");
 
   auto *defaults = app.add_subcommand("defaults", "Print a complete, documented deck of a kind");
   defaults->add_option("KIND", kind, "Deck kind")->required();
@@ -161,6 +207,13 @@ int main(int argc, char **argv)
       for (int i = 0; i < argc; ++i)
         sweep.settings.command_line += (i ? " " : "") + std::string(argv[i]);
       return verify::command_sweep(sweep);
+    }
+    if (calibrate_cmd->parsed())
+    {
+      calibration.settings.progress = !calibrate_quiet;
+      for (int i = 0; i < argc; ++i)
+        calibration.settings.command_line += (i ? " " : "") + std::string(argv[i]);
+      return verify::command_calibrate(calibration);
     }
     if (defaults->parsed())
       return verify::command_defaults(kind);

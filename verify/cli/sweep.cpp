@@ -120,7 +120,7 @@ std::vector<Member> plan_members(const SweepPlan &plan)
   {
     Member &m = members[i];
     m.index = i;
-    m.seed = seeds > 0 ? int(i % std::size_t(seeds)) + 1 : 0;
+    m.seed = seeds > 0 ? int(i % std::size_t(seeds)) + plan.first_seed : 0;
     m.values = plan.points[i / std::size_t(std::max(seeds, 1))];
     const std::string number = std::to_string(i);
     m.label = std::string(width - number.size(), '0') + number;
@@ -201,7 +201,8 @@ void resolve_members(std::vector<Member> &members, const std::string &base_path,
           throw DeckError(m.prepare_deck + ": its sample for seed " + std::to_string(m.seed) +
                           " could not be prepared (see " + fs::path(sample).parent_path().string() +
                           "/summary.json): expected a prepare deck that prepares");
-        m.overrides.push_back("sample/file=" + sample);
+        // Absolute: an override's file is read relative to the deck.
+        m.overrides.push_back("sample/file=" + fs::absolute(sample).lexically_normal().string());
       }
       m.resolved = Deck::from_file(base_path, m.overrides).resolved();
     }
@@ -618,7 +619,7 @@ int command_sweep(const SweepOptions &o)
   const Deck base = Deck::from_file(o.base_deck);
   if (o.vary.empty() && o.seeds == 0)
     throw DeckError("sweep of " + o.base_deck + ": nothing varies: expected --vary SECTION/KEY=v1,v2,... or --seeds N");
-  SweepPlan plan{o.base_deck, {}, {{}}, o.seeds};
+  SweepPlan plan{o.base_deck, {}, {{}}, o.seeds, 1};
   for (const std::string &arg : o.vary)
   {
     const Varied v = parse_vary(arg, base);

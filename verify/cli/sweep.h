@@ -71,7 +71,7 @@ struct SweepOptions
 };
 
 /// What a sweep runs: the base deck at each point (one value per key, set
-/// as --set would), each point with seeds 1..seeds (0: the deck's own).
+/// as --set would), each point with `seeds` seeds (0: the deck's own).
 /// `demvv sweep` makes the points the product of its --vary values; the
 /// calibration makes them its trial parameters and their finite-difference
 /// neighbours.
@@ -80,7 +80,8 @@ struct SweepPlan
   std::string base_deck;
   std::vector<std::string> keys;
   std::vector<std::vector<std::string>> points;
-  int seeds = 0;
+  int seeds = 0;      ///< seeds per point; 0: the deck's own
+  int first_seed = 1; ///< the seeds are first_seed ... first_seed + seeds - 1
 };
 
 /// One member's outcome, read from its run directory: status "pending",
