@@ -375,7 +375,7 @@ const Evaluation *Calibration::evaluate(const std::vector<std::string> &values)
       steps_[j] = std::min(largest_step, 2 * steps_[j]);
   }
   history_.push_back(e);
-  if (mpi_.rank == 0)
+  if (mpi_.rank == 0 && o_.settings.progress)
   {
     std::ostringstream line;
     line << "demvv: calibration evaluation " << name << " (iteration " << iteration_ << "):";

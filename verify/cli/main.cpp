@@ -130,7 +130,7 @@ int main(int argc, char **argv)
                             "MPI ranks)")
     ->check(CLI::Range(1, 1024));
   bool calibrate_quiet = false;
-  calibrate_cmd->add_flag("--quiet", calibrate_quiet, "No progress lines for the evaluations' members");
+  calibrate_cmd->add_flag("--quiet", calibrate_quiet, "No progress lines (the evaluations and their members)");
 
   auto *defaults = app.add_subcommand("defaults", "Print a complete, documented deck of a kind");
   defaults->add_option("KIND", kind, "Deck kind")->required();

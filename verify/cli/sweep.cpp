@@ -608,9 +608,9 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
   }
   record["members_by_status"] = tally;
   write_record(interrupted ? "interrupted" : "completed");
-  std::cerr << "demvv: sweep " << (interrupted ? "interrupted" : "done") << ": " << said << " of "
-              << members.size() << " members; table in " << o.out_dir << "/sweep.csv"
-              << (interrupted ? "; rerun the same command to resume" : "") << "\n";
+  outcome.summary = std::string("sweep ") + (interrupted ? "interrupted" : "done") + ": " + said + " of " +
+                    std::to_string(members.size()) + " members; table in " + o.out_dir + "/sweep.csv" +
+                    (interrupted ? "; rerun the same command to resume" : "");
   return outcome;
 }
 
@@ -639,6 +639,9 @@ int command_sweep(const SweepOptions &o)
     plan.keys.push_back(v.key);
     plan.points = points;
   }
-  return run_sweep(plan, o.settings).exit_code;
+  const SweepOutcome outcome = run_sweep(plan, o.settings);
+  if (!outcome.summary.empty())
+    std::cerr << "demvv: " << outcome.summary << "\n";
+  return outcome.exit_code;
 }
 } // namespace verify

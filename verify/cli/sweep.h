@@ -103,6 +103,7 @@ struct SweepOutcome
 {
   int exit_code = 0;            ///< 0, or 128 + signal when interrupted
   std::vector<SweepRow> rows;   ///< one per member: point after point, seed innermost (on every rank)
+  std::string summary;          ///< one line: members by status, where the table is (rank 0)
 };
 
 /// Runs (or resumes) the members of a plan in settings.out_dir.  Bad input

@@ -34,6 +34,9 @@ struct Curve
 
   /// Points in memory (written beside the script)...
   std::vector<double> x, y;
+  /// ...with, when given, a half-width for each y (drawn as error bars,
+  /// e.g. a 95 % confidence interval)...
+  std::vector<double> y_error;
   /// ...or two columns of a CSV file, its path relative to the figure's folder.
   std::string file, x_column, y_column;
 

@@ -199,12 +199,16 @@ std::string gnuplot_script(const Figure &f)
       continue;
     o << (first ? "" : ", \\\n     ");
     first = false;
+    const bool bars = in_memory(c) && !c.y_error.empty();
     if (in_memory(c))
       o << quoted(f.name + ".csv") << " index " << block++ << " using " << using_item("1", c.x_scale) << ":"
-        << using_item("2", c.y_scale);
+        << using_item("2", c.y_scale) << (bars ? ":" + using_item("3", c.y_scale) : "");
     else
       o << quoted(c.file) << " using " << using_item(c.x_column, c.x_scale) << ":" << using_item(c.y_column, c.y_scale);
-    o << (c.right_axis ? " axes x1y2 " : " ") << style_clause(c.style, c.colour ? c.colour : colour) << " title " << quoted(c.title);
+    const int lc = c.colour ? c.colour : colour;
+    o << (c.right_axis ? " axes x1y2 " : " ")
+      << (bars ? "with yerrorbars pt 7 ps 0.9 lc " + std::to_string(lc) : style_clause(c.style, lc)) << " title "
+      << quoted(c.title);
   }
   o << "\n";
   return o.str();
@@ -221,7 +225,8 @@ void write_figure_files(const Figure &f, const std::string &dir)
     data << (any ? "\n\n" : "") << "# " << c.title << "\n";
     any = true;
     for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k)
-      data << number(c.x[k]) << "," << number(c.y[k]) << "\n";
+      data << number(c.x[k]) << "," << number(c.y[k])
+           << (c.y_error.empty() ? "" : "," + number(k < c.y_error.size() ? c.y_error[k] : 0.0)) << "\n";
   }
   if (any)
     write_atomically(dir + "/" + f.name + ".csv", data.str());
