@@ -581,23 +581,11 @@ void Calibration::write_outputs(const std::string &status, const Evaluation *fin
   write_atomically(dir + "/fitted.prm", deck.str());
 }
 
-/// Takes the calibration directory on rank 0: new or empty, or a
-/// calibration's own (resumed), or with --replace a calibration emptied.
-void claim_calibration_directory(const std::string &dir, bool replace)
-{
-  const std::string named = "calibration directory '" + dir + "'";
-  if (!holds_entries(dir, named, "the calibration"))
-    return;
-  if (!fs::exists(fs::path(dir) / "calibration.json"))
-    throw DeckError(named + " is not empty and holds no calibration.json: expected a new or empty directory (--out), "
-                            "or a calibration's own to resume or replace");
-  if (replace)
-    empty_directory(dir, "the calibration");
-}
-
 int Calibration::run()
 {
-  on_rank_zero_for_all(true, [&] { claim_calibration_directory(o_.settings.out_dir, o_.settings.replace); });
+  on_rank_zero_for_all(true, [&] {
+    claim_resumable_directory(o_.settings.out_dir, o_.settings.replace, "calibration", "calibration.json");
+  });
   if (mpi_.rank == 0)
     make_directories(o_.settings.out_dir + "/evaluations");
 

@@ -436,17 +436,9 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
 /// (resumed), or with --replace a sweep directory emptied.
 void claim_sweep_directory(const std::string &dir, bool replace, const std::vector<Member> &members)
 {
+  if (!claim_resumable_directory(dir, replace, "sweep", "sweep.json"))
+    return;
   const std::string named = "sweep directory '" + dir + "'";
-  if (!holds_entries(dir, named, "the sweep"))
-    return;
-  if (!fs::exists(fs::path(dir) / "sweep.json"))
-    throw DeckError(named + " is not empty and holds no sweep.json: expected a new or empty directory (--out), or "
-                            "a sweep's own to resume or replace");
-  if (replace)
-  {
-    empty_directory(dir, "the sweep");
-    return;
-  }
   std::vector<std::string> labels, before;
   for (const Member &m : members)
     labels.push_back(m.label);

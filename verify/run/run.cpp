@@ -73,6 +73,21 @@ void empty_directory(const std::string &dir, const std::string &what)
                         ec.message() + ")");
 }
 
+bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what,
+                               const std::string &marker)
+{
+  const std::string named = what + " directory '" + dir + "'";
+  if (!holds_entries(dir, named, "the " + what))
+    return false;
+  if (!std::filesystem::exists(std::filesystem::path(dir) / marker))
+    throw DeckError(named + " is not empty and holds no " + marker + ": expected a new or empty directory (--out), "
+                    "or a " + what + "'s own to resume or replace");
+  if (!replace)
+    return true;
+  empty_directory(dir, "the " + what);
+  return false;
+}
+
 void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate)
 {
   namespace fs = std::filesystem;

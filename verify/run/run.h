@@ -122,6 +122,13 @@ bool holds_entries(const std::string &dir, const std::string &named, const std::
 /// Removes everything inside `dir`; OutputError naming the entry that
 /// would not go and `what` is being replaced ("the run").
 void empty_directory(const std::string &dir, const std::string &what);
+/// Takes the output directory of a command that resumes (a sweep, a
+/// calibration: `what`), recognised by the file `marker` inside it: false
+/// when it is absent or empty, or when `replace` has emptied it; true when
+/// it holds an earlier one to resume.  DeckError when it holds something
+/// else (never emptied).
+bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what,
+                               const std::string &marker);
 
 /// Records a fault into a status (from a NumericalFault).
 void record_fault(RunStatus &status, const dem::NumericalFault &fault);
