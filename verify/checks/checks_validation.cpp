@@ -324,6 +324,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   Curve law_curve = curve("law, eq. 4.4 (10.3 MPa (rate_T / 0.1)^0.29)", law_x, law_y, CurveStyle::dashed);
   Curve calibrated = curve("calibration point (10 C, 0.1 1/s)", {compensated(calibration_condition)},
                            {number_at(t, "fitted_mean")}, CurveStyle::points);
+  calibrated.point_type = 5;
   calibrated.y_error = {half_width_95(number_at(t, "standard_error_of_mean"), c.value("seeds", 0))};
   std::vector<Curve> curves = {law_curve, calibrated};
   for (std::size_t g = 0; g < configurations.size(); ++g)

@@ -681,7 +681,10 @@ int Calibration::run()
                 << (q.contains("standard_error") && q["standard_error"].is_number()
                       ? " +- " + format_number(q["standard_error"].get<double>())
                       : "");
-    std::cerr << "; " << stop_message_ << "; fitted deck " << o_.settings.out_dir << "/fitted.prm\n";
+    std::cerr << "; " << stop_message_
+              << (outcome == "converged" ? "; fitted deck " + o_.settings.out_dir + "/fitted.prm"
+                                         : "; no fitted deck (calibration.json has the last point)")
+              << "\n";
   }
   return outcome == "converged" ? 0 : 3;
 }

@@ -31,6 +31,7 @@ struct Curve
   CurveStyle style = CurveStyle::line;
   bool right_axis = false; ///< plotted against the right-hand y axis
   int colour = 0;          ///< gnuplot's line colour index; 0: the curve's place in the figure
+  int point_type = 7;      ///< gnuplot's marker (7 a filled circle, 5 a filled square)
 
   /// Points in memory (written beside the script)...
   std::vector<double> x, y;

@@ -80,9 +80,10 @@ std::string using_item(const std::string &c, double scale)
   return "(" + (numbered ? "$" + c : "column(" + quoted(c) + ")") + (scale == 1 ? "" : "*" + number(scale)) + ")";
 }
 
-std::string style_clause(CurveStyle s, int colour)
+std::string style_clause(CurveStyle s, int colour, int point_type)
 {
   const std::string lc = " lc " + std::to_string(colour);
+  const std::string pt = " pt " + std::to_string(point_type);
   switch (s)
   {
   case CurveStyle::line:
@@ -90,9 +91,9 @@ std::string style_clause(CurveStyle s, int colour)
   case CurveStyle::dashed:
     return "with lines lw 2 dt 2" + lc;
   case CurveStyle::points:
-    return "with points pt 7 ps 0.9" + lc;
+    return "with points" + pt + " ps 0.9" + lc;
   case CurveStyle::markers_and_line:
-    return "with linespoints lw 2 pt 7 ps 0.9" + lc;
+    return "with linespoints lw 2" + pt + " ps 0.9" + lc;
   }
   return "with lines";
 }
@@ -207,7 +208,8 @@ std::string gnuplot_script(const Figure &f)
       o << quoted(c.file) << " using " << using_item(c.x_column, c.x_scale) << ":" << using_item(c.y_column, c.y_scale);
     const int lc = c.colour ? c.colour : colour;
     o << (c.right_axis ? " axes x1y2 " : " ")
-      << (bars ? "with yerrorbars pt 7 ps 0.9 lc " + std::to_string(lc) : style_clause(c.style, lc)) << " title "
+      << (bars ? "with yerrorbars pt " + std::to_string(c.point_type) + " ps 0.9 lc " + std::to_string(lc)
+              : style_clause(c.style, lc, c.point_type)) << " title "
       << quoted(c.title);
   }
   o << "\n";
