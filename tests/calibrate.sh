@@ -33,44 +33,18 @@ fail() { echo "FAIL: $*"; exit 1; }
 one_line() { [ "$(wc -l < "$1")" -eq 1 ] || fail "$2: the error is not one line: $(cat "$1")"; }
 field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$1" "$2"; }
 
-cat > "$work/elastic.prm" <<'EOF'
-set kind = uniaxial
-subsection sample
-  set source = lattice
-  set diameter = 0.008
-  set height = 0.008
-end
-subsection balls
-  set normal stiffness = 1e7
-  set shear stiffness = 1e7
-end
-subsection platens
-  set normal stiffness = 1e7
-end
-subsection loading
-  set final strain = 0.002
-end
-EOF
-cat > "$work/noisy.prm" <<'EOF'
-set kind = uniaxial
-subsection sample
-  set source = lattice
-  set diameter = 0.008
-  set height = 0.008
-end
-subsection bonds
-  set strength cov = 0.3
-end
-subsection loading
-  set final strain = 0.02
-end
-EOF
+lattice="$(dirname "$0")/data/small_lattice.prm"
+stiffness="balls/normal stiffness+balls/shear stiffness+platens/normal stiffness"
+strength="bonds/normal strength+bonds/shear strength"
+elastic="bonds/strength cov=0"
+short="loading/final strain=0.002"
 
 # 1. Proportional model against its closed form.
-"$demvv" run "$work/elastic.prm" --out "$work/reference" --quiet --threads 1 2>/dev/null || fail "reference run"
-stiffness="balls/normal stiffness+balls/shear stiffness+platens/normal stiffness"
-"$demvv" calibrate "$work/elastic.prm" --fit "$stiffness=0.75e7" --target initial_modulus_pa=3e9 \
-  --tolerance 1e-4 --seeds 2 --out "$work/elastic" --threads 1 --quiet 2>"$work/err_elastic" ||
+"$demvv" run "$lattice" --set "$elastic" --set "$short" --set "balls/normal stiffness=1e7" \
+  --set "balls/shear stiffness=1e7" --set "platens/normal stiffness=1e7" --out "$work/reference" --quiet \
+  --threads 1 2>/dev/null || fail "reference run"
+"$demvv" calibrate "$lattice" --fit "$stiffness=0.75e7" --target initial_modulus_pa=3e9 --at "$elastic" \
+  --at "$short" --tolerance 1e-4 --seeds 2 --out "$work/elastic" --threads 1 --quiet 2>"$work/err_elastic" ||
   fail "elastic calibration: $(tail -1 "$work/err_elastic")"
 python3 - "$work" <<'EOF' || fail "the proportional model's fit is off its closed form"
 import json, sys
@@ -87,10 +61,9 @@ EOF
 grep -q "^ *set normal stiffness *= *13250" "$work/elastic/fitted.prm" || fail "fitted.prm lacks the fitted stiffness"
 
 # 2. Noisy model, two seed sets.
-strength="bonds/normal strength+bonds/shear strength"
 calibrate_noisy() { # OUT FIRST_SEED [launcher]
-  $3 "$demvv" calibrate "$work/noisy.prm" --fit "$strength=11" --target peak_stress_pa=1e7 --seeds 3 \
-    --first-seed "$2" --out "$work/$1" --threads 1 --quiet
+  $3 "$demvv" calibrate "$lattice" --fit "$strength=11" --target peak_stress_pa=1e7 \
+    --at "loading/final strain=0.02" --seeds 3 --first-seed "$2" --out "$work/$1" --threads 1 --quiet
 }
 calibrate_noisy noisy_a 1 "" 2>"$work/err_a" || fail "noisy calibration, seeds 1-3: $(tail -1 "$work/err_a")"
 calibrate_noisy noisy_b 4 "" 2>"$work/err_b" || fail "noisy calibration, seeds 4-6: $(tail -1 "$work/err_b")"
@@ -132,22 +105,22 @@ expect() { # CODE WORDS NAME -- command...
   [ "$got" -eq "$code" ] || fail "$name: exit $got, expected $code: $(cat "$work/err_$name")"
   tail -1 "$work/err_$name" | grep -q "$words" || fail "$name: the error does not say '$words': $(cat "$work/err_$name")"
 }
-expect 2 "has no entry 'bonds/strength'" no_entry -- "$demvv" calibrate "$work/noisy.prm" --fit "bonds/strength=10" \
+expect 2 "has no entry 'bonds/strength'" no_entry -- "$demvv" calibrate "$lattice" --fit "bonds/strength=10" \
   --target peak_stress_pa=1e7 --out "$work/bad1"
 one_line "$work/err_no_entry" "unknown entry"
-expect 2 "QUANTITY one of" no_quantity -- "$demvv" calibrate "$work/noisy.prm" --fit "$strength=10" \
+expect 2 "QUANTITY one of" no_quantity -- "$demvv" calibrate "$lattice" --fit "$strength=10" \
   --target peak=1e7 --out "$work/bad2"
 one_line "$work/err_no_quantity" "unknown quantity"
-expect 2 "expected a positive value" negative_start -- "$demvv" calibrate "$work/noisy.prm" --fit "$strength=-3" \
+expect 2 "expected a positive value" negative_start -- "$demvv" calibrate "$lattice" --fit "$strength=-3" \
   --target peak_stress_pa=1e7 --out "$work/bad3"
 [ ! -e "$work/bad1" ] && [ ! -e "$work/bad2" ] && [ ! -e "$work/bad3" ] || fail "refused input left a directory"
-expect 3 "calibration failed: evaluation 000 (centre), seed 1: fault" fault -- "$demvv" calibrate "$work/noisy.prm" \
+expect 3 "calibration failed: evaluation 000 (centre), seed 1: fault" fault -- "$demvv" calibrate "$lattice" \
   --fit "$strength=10" --target peak_stress_pa=1e7 --seeds 2 --at "motion/fixed time step=1e-4" \
   --at "motion/unstable fixed step=run" --out "$work/fault" --threads 1 --quiet
 [ "$(field "$work/fault/calibration.json" 'd["status"]')" = failed ] || fail "a faulted fit is not recorded as failed"
 [ -f "$work/fault/evaluations/000/sweep.csv" ] && [ ! -e "$work/fault/fitted.prm" ] ||
   fail "a faulted fit lost its evaluation or wrote a fitted deck"
-expect 3 "not converged" unreachable -- "$demvv" calibrate "$work/noisy.prm" --fit "$strength=10" \
+expect 3 "not converged" unreachable -- "$demvv" calibrate "$lattice" --fit "$strength=10" \
   --target peak_stress_pa=-1e7 --seeds 2 --max-iterations 2 --out "$work/unreachable" --threads 1 --quiet
 [ "$(field "$work/unreachable/calibration.json" 'd["status"]')" = "not converged" ] ||
   fail "an unreachable target is not recorded as not converged"

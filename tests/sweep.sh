@@ -20,20 +20,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 one_line() { [ "$(wc -l < "$1")" -eq 1 ] || fail "$2: the error is not one line: $(cat "$1")"; }
 
 # A small lattice with random bond strengths, so that seeds matter.
-cat > "$work/base.prm" <<'EOF'
-set kind = uniaxial
-subsection sample
-  set source = lattice
-  set diameter = 0.008
-  set height = 0.008
-end
-subsection bonds
-  set strength cov = 0.3
-end
-subsection loading
-  set final strain = 0.004
-end
-EOF
+cp "$(dirname "$0")/data/small_lattice.prm" "$work/base.prm"
 sweep() { "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 "$@"; }
 
 sweep --out "$work/a" --threads 2 2>"$work/err_a" || fail "the sweep failed: $(cat "$work/err_a")"
