@@ -22,15 +22,14 @@
 # 5. under MPI two ranks give the same fit, byte for byte, as one process.
 # Usage: calibrate.sh DEMVV WORK_DIR [MPIRUN]
 set -u
-demvv=$1
-work=$2
-mpirun=${3:-}
-launch_np2="${mpirun:+$mpirun --oversubscribe -np 2}"
-[ -n "$mpirun" ] && [ "$(id -u)" -eq 0 ] && launch_np2="$mpirun --allow-run-as-root --oversubscribe -np 2"
-rm -rf "$work"
-mkdir -p "$work"
-fail() { echo "FAIL: $*"; exit 1; }
-one_line() { [ "$(wc -l < "$1")" -eq 1 ] || fail "$2: the error is not one line: $(cat "$1")"; }
+. "$(dirname "$0")/multi_run_support.sh"
+same_fit() { # DIR_A DIR_B: the same fitted parameters and targets
+  python3 - "$work/$1/calibration.json" "$work/$2/calibration.json" <<'EOF'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["parameters"] == b["parameters"] and a["targets"] == b["targets"]
+EOF
+}
 field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$1" "$2"; }
 
 lattice="$(dirname "$0")/data/small_lattice.prm"
@@ -85,15 +84,11 @@ assert abs(11 / pa["value"] - 0.5) < 0.1
 EOF
 
 # 3. Resume: nothing runs again, the same result.
-cp "$work/noisy_a/calibration.json" "$work/before.json"
+mkdir -p "$work/before"
+cp "$work/noisy_a/calibration.json" "$work/before/calibration.json"
 calibrate_noisy noisy_a 1 "" 2>"$work/err_resume" || fail "resume: $(tail -1 "$work/err_resume")"
-python3 - "$work" <<'EOF' || fail "resumed calibration differs"
-import json, sys
-w = sys.argv[1]
-a = json.load(open(w + "/before.json")); b = json.load(open(w + "/noisy_a/calibration.json"))
-assert a["parameters"] == b["parameters"] and a["targets"] == b["targets"]
-EOF
-[ -z "$(find "$work/noisy_a/evaluations" -path '*/members/*/summary.json' -newer "$work/before.json")" ] ||
+same_fit before noisy_a || fail "resumed calibration differs"
+[ -z "$(find "$work/noisy_a/evaluations" -path '*/members/*/summary.json' -newer "$work/before/calibration.json")" ] ||
   fail "resume ran members again"
 
 # 4. Bad input.
@@ -128,11 +123,6 @@ expect 3 "not converged" unreachable -- "$demvv" calibrate "$lattice" --fit "$st
 # 5. MPI: the same fit on two ranks.
 if [ -n "$mpirun" ]; then
   calibrate_noisy noisy_mpi 1 "$launch_np2" 2>"$work/err_mpi" || fail "two ranks: $(tail -1 "$work/err_mpi")"
-  python3 - "$work" <<'EOF' || fail "two ranks give another fit than one process"
-import json, sys
-w = sys.argv[1]
-a = json.load(open(w + "/noisy_a/calibration.json")); b = json.load(open(w + "/noisy_mpi/calibration.json"))
-assert a["parameters"] == b["parameters"] and a["targets"] == b["targets"]
-EOF
+  same_fit noisy_a noisy_mpi || fail "two ranks give another fit than one process"
 fi
 echo "calibrate: all passed"

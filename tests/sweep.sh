@@ -9,15 +9,7 @@
 # byte, as one process.
 # Usage: sweep.sh DEMVV WORK_DIR [MPIRUN]
 set -u
-demvv=$1
-work=$2
-mpirun=${3:-}
-launch_np2="${mpirun:+$mpirun --oversubscribe -np 2}"
-[ -n "$mpirun" ] && [ "$(id -u)" -eq 0 ] && launch_np2="$mpirun --allow-run-as-root --oversubscribe -np 2"
-rm -rf "$work"
-mkdir -p "$work"
-fail() { echo "FAIL: $*"; exit 1; }
-one_line() { [ "$(wc -l < "$1")" -eq 1 ] || fail "$2: the error is not one line: $(cat "$1")"; }
+. "$(dirname "$0")/multi_run_support.sh"
 
 # A small lattice with random bond strengths, so that seeds matter.
 cp "$(dirname "$0")/data/small_lattice.prm" "$work/base.prm"
