@@ -109,18 +109,20 @@ public:
   // The pass is one parallel region of two loops over the balls, each
   // ball owned by one thread in both (static schedule).  The first loop
   // resolves the contacts where the ball is first (the table is sorted by
-  // first ball, so each contact is resolved by exactly one thread) and
-  // subtracts their loads at once; after the barrier, the second loop adds
-  // the loads of the contacts where the ball is second, read back from
-  // their state (F = F_n n + F_s, lever n x F_s), and the walls.  Each sum
-  // keeps the order of ball_forces.h, so results do not depend on the
-  // thread count, and no per-contact load array is written or read.
+  // first ball, so each contact is resolved by exactly one thread),
+  // subtracts their loads from the ball's sums at once and leaves each
+  // contact's load on its second ball in a 64-byte record; after the
+  // barrier, the second loop adds those records (via the table's second
+  // list) and the walls.  Each sum keeps the order of ball_forces.h, so
+  // results do not depend on the thread count.
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
     Contact *const contacts = table.entries().data();
     LawState *const states = table.law_states().data();
     const std::vector<std::size_t> &second_list = table.second_list();
+    second_loads_.resize(table.size());
+    SecondLoad *const second_loads = second_loads_.data();
     const double dt = balls.dt;
     law_.prepare(dt);
     const Index n = p.size();
@@ -138,7 +140,7 @@ public:
         double bound = 0;
         const std::size_t end = table.first_begin(b + 1);
         for (std::size_t c = table.first_begin(b); c < end; ++c)
-          resolve_first(p, contacts[c], states, c, dt, f, t, bound, broken);
+          second_loads[c] = resolve_first(p, contacts[c], states, c, dt, f, t, bound, broken);
         // The partial sums wait in the resultant arrays for the second loop.
         balls.particles.force[b] = Vec3(f[0], f[1], f[2]);
         balls.particles.torque[b] = Vec3(t[0], t[1], t[2]);
@@ -153,18 +155,13 @@ public:
         const std::size_t end = table.second_begin(b + 1);
         for (std::size_t k = table.second_begin(b); k < end; ++k)
         {
-          const Contact &c = contacts[second_list[k]];
-          const ContactState &s = c.state;
-          if (!s.touching)
-            continue;
-          const double arm = p.radius[b] - 0.5 * s.overlap;
-          const Vec3 lever = cross(s.normal, s.shear_force);
+          const SecondLoad &load = second_loads[second_list[k]];
           for (int d = 0; d < 3; ++d)
           {
-            f[d] += s.normal_force * s.normal[d] + s.shear_force[d];
-            t[d] -= arm * lever[d];
+            f[d] += load.force[d];
+            t[d] -= load.arm * load.lever[d];
           }
-          bound += s.overlap < 0 ? tension_terms(p, c).second : c.stability.second;
+          bound += load.bound;
         }
         largest = std::max(largest, balls.finish(b, f, t, bound));
       }
@@ -196,10 +193,23 @@ public:
   }
 
 private:
-  /// Resolves contact c of ball k.first at this step and subtracts its
-  /// load from the first ball's sums f [N], t [N m] and bound [1/s^2].
-  DEM_HOT_INLINE void resolve_first(const ParticleStore &p, Contact &k, LawState *states, std::size_t c, double dt,
-                                    double (&f)[3], double (&t)[3], double &bound, std::vector<BrokenBond> &broken)
+  /// A contact's load on its second ball at this step: F [N] and the
+  /// torque's lever n x F_s [N] and arm [m] (T = -arm lever), and the
+  /// stability row term [1/s^2]; all zero when the contact carries none.
+  struct alignas(64) SecondLoad
+  {
+    double force[3];
+    double lever[3];
+    double arm;
+    double bound;
+  };
+
+  /// Resolves contact c of ball k.first at this step, subtracts its load
+  /// from the first ball's sums f [N], t [N m] and bound [1/s^2] and returns
+  /// its load on the second ball.
+  DEM_HOT_INLINE SecondLoad resolve_first(const ParticleStore &p, Contact &k, LawState *states, std::size_t c,
+                                          double dt, double (&f)[3], double (&t)[3], double &bound,
+                                          std::vector<BrokenBond> &broken)
   {
     const Index i = k.first, j = k.second;
     if (!k.bond.intact && !k.state.touching)
@@ -207,7 +217,7 @@ private:
       // Fast exit for candidates that are not touching.
       const double reach = p.radius[i] + p.radius[j];
       if ((p.position[j] - p.position[i]).squaredNorm() >= reach * reach)
-        return;
+        return {};
     }
     const ContactGeometry g = sphere_sphere(p, i, j);
     typename Law::History history{};
@@ -219,7 +229,7 @@ private:
     if (r.broke != BreakMode::none)
       broken.push_back({c, r.broke, r.trial});
     if (!r.touching)
-      return;
+      return {};
     const Vec3 lever = cross(g.normal, r.shear);
     for (int d = 0; d < 3; ++d)
     {
@@ -228,7 +238,9 @@ private:
     }
     // In compression the arms are at most the radii and the precomputed
     // terms hold; a bonded pair in tension has longer arms.
-    bound += g.overlap < 0 ? tension_terms(p, k).first : k.stability.first;
+    const StabilityTerms terms = g.overlap < 0 ? tension_terms(p, k) : k.stability;
+    bound += terms.first;
+    return {{r.force.x(), r.force.y(), r.force.z()}, {lever.x(), lever.y(), lever.z()}, g.arm_second, terms.second};
   }
 
   /// Stability row terms of a touching contact in tension (arms longer
@@ -255,6 +267,7 @@ private:
   static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
 
   Law law_;
+  std::vector<SecondLoad> second_loads_;         ///< per entry, rewritten by every pass
   std::vector<std::vector<BrokenBond>> broken_; ///< per thread, reused from step to step
 };
 

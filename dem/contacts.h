@@ -17,7 +17,7 @@
 // T_first = -arm_first (n x F_s) and T_second = -arm_second (n x F_s), the
 // arms R - U/2 (the contact point is at arm * n from the first centre and
 // -arm * n from the second).  The force pass (contact_model.h) sums loads
-// into the balls as it resolves the contacts, so no load array is kept.
+// into the balls as it resolves the contacts; the table keeps no loads.
 #pragma once
 
 #include "dem/contact.h"
