@@ -3,9 +3,9 @@
 //
 // The virtual call happens once per step; inside, LawModel<Law> runs the
 // whole force pass (contacts resolved, each ball's resultant summed) with
-// the law inlined.  Each contact is resolved by the thread that owns its
-// first ball and each ball's sums keep one order (ball_forces.h), so
-// results do not depend on the thread count.
+// the law inlined.  Each contact writes only its own entries and each
+// ball's sums keep one order (ball_forces.h), so results do not depend on
+// the thread count.
 //
 // A model holds the law's parameters and per-step constants only.  Every
 // contact's history, the law's own included (LawState), lives in the
@@ -106,14 +106,12 @@ public:
   std::string_view name() const override { return Law::keyword; }
   const Law &law() const { return law_; }
 
-  // The pass is one parallel region of two loops over the balls, each
-  // ball owned by one thread in both (static schedule).  The first loop
-  // resolves the contacts where the ball is first (the table is sorted by
-  // first ball, so each contact is resolved by exactly one thread),
-  // subtracts their loads from the ball's sums at once and leaves each
-  // contact's load on its second ball in a 64-byte record; after the
-  // barrier, the second loop adds those records (via the table's second
-  // list) and the walls.  Each sum keeps the order of ball_forces.h, so
+  // The pass is one parallel region of two loops.  The first resolves
+  // every contact (each by one thread, each writing only its own entries)
+  // and leaves its loads on both balls in an 80-byte record; after the
+  // barrier, the second sums each ball's records, first the contacts where
+  // it is first, then those where it is second (via the table's second
+  // list), then its walls (ball_forces.h).  The sums keep that order, so
   // results do not depend on the thread count.
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
@@ -121,8 +119,9 @@ public:
     Contact *const contacts = table.entries().data();
     LawState *const states = table.law_states().data();
     const std::vector<std::size_t> &second_list = table.second_list();
-    second_loads_.resize(table.size());
-    SecondLoad *const second_loads = second_loads_.data();
+    loads_.resize(table.size());
+    PairLoad *const loads = loads_.data();
+    const auto pairs = static_cast<std::ptrdiff_t>(table.size());
     const double dt = balls.dt;
     law_.prepare(dt);
     const Index n = p.size();
@@ -133,6 +132,9 @@ public:
       std::vector<BrokenBond> &broken = broken_[static_cast<std::size_t>(omp_get_thread_num())];
       broken.clear();
 #pragma omp for schedule(static)
+      for (std::ptrdiff_t c = 0; c < pairs; ++c)
+        loads[c] = resolve_pair(p, contacts[c], states, static_cast<std::size_t>(c), dt, broken);
+#pragma omp for schedule(static)
       for (Index b = 0; b < n; ++b)
       {
         double f[3], t[3] = {0, 0, 0};
@@ -140,28 +142,25 @@ public:
         double bound = 0;
         const std::size_t end = table.first_begin(b + 1);
         for (std::size_t c = table.first_begin(b); c < end; ++c)
-          second_loads[c] = resolve_first(p, contacts[c], states, c, dt, f, t, bound, broken);
-        // The partial sums wait in the resultant arrays for the second loop.
-        balls.particles.force[b] = Vec3(f[0], f[1], f[2]);
-        balls.particles.torque[b] = Vec3(t[0], t[1], t[2]);
-        balls.row_bound[b] = bound;
-      }
-#pragma omp for schedule(static)
-      for (Index b = 0; b < n; ++b)
-      {
-        double f[3] = {p.force[b].x(), p.force[b].y(), p.force[b].z()};
-        double t[3] = {p.torque[b].x(), p.torque[b].y(), p.torque[b].z()};
-        double bound = balls.row_bound[b];
-        const std::size_t end = table.second_begin(b + 1);
-        for (std::size_t k = table.second_begin(b); k < end; ++k)
         {
-          const SecondLoad &load = second_loads[second_list[k]];
+          const PairLoad &load = loads[c];
+          for (int d = 0; d < 3; ++d)
+          {
+            f[d] -= load.force[d];
+            t[d] -= load.arm_first * load.lever[d];
+          }
+          bound += load.bound_first;
+        }
+        const std::size_t last = table.second_begin(b + 1);
+        for (std::size_t k = table.second_begin(b); k < last; ++k)
+        {
+          const PairLoad &load = loads[second_list[k]];
           for (int d = 0; d < 3; ++d)
           {
             f[d] += load.force[d];
-            t[d] -= load.arm * load.lever[d];
+            t[d] -= load.arm_second * load.lever[d];
           }
-          bound += load.bound;
+          bound += load.bound_second;
         }
         largest = std::max(largest, balls.finish(b, f, t, bound));
       }
@@ -193,23 +192,21 @@ public:
   }
 
 private:
-  /// A contact's load on its second ball at this step: F [N] and the
-  /// torque's lever n x F_s [N] and arm [m] (T = -arm lever), and the
-  /// stability row term [1/s^2]; all zero when the contact carries none.
-  struct alignas(64) SecondLoad
+  /// What a contact gives its two balls at this step: the force F on the
+  /// second [N] (the first gets -F), the torques' lever n x F_s [N] and
+  /// arms [m] (T = -arm lever), and the stability row terms [1/s^2]; all
+  /// zero when the contact carries none.
+  struct PairLoad
   {
     double force[3];
     double lever[3];
-    double arm;
-    double bound;
+    double arm_first, arm_second;
+    double bound_first, bound_second;
   };
 
-  /// Resolves contact c of ball k.first at this step, subtracts its load
-  /// from the first ball's sums f [N], t [N m] and bound [1/s^2] and returns
-  /// its load on the second ball.
-  DEM_HOT_INLINE SecondLoad resolve_first(const ParticleStore &p, Contact &k, LawState *states, std::size_t c,
-                                          double dt, double (&f)[3], double (&t)[3], double &bound,
-                                          std::vector<BrokenBond> &broken)
+  /// Resolves contact c at this step and returns its loads.
+  DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, LawState *states, std::size_t c,
+                                       double dt, std::vector<BrokenBond> &broken)
   {
     const Index i = k.first, j = k.second;
     if (!k.bond.intact && !k.state.touching)
@@ -231,16 +228,15 @@ private:
     if (!r.touching)
       return {};
     const Vec3 lever = cross(g.normal, r.shear);
-    for (int d = 0; d < 3; ++d)
-    {
-      f[d] -= r.force[d];
-      t[d] -= g.arm_first * lever[d];
-    }
     // In compression the arms are at most the radii and the precomputed
     // terms hold; a bonded pair in tension has longer arms.
     const StabilityTerms terms = g.overlap < 0 ? tension_terms(p, k) : k.stability;
-    bound += terms.first;
-    return {{r.force.x(), r.force.y(), r.force.z()}, {lever.x(), lever.y(), lever.z()}, g.arm_second, terms.second};
+    return {{r.force.x(), r.force.y(), r.force.z()},
+            {lever.x(), lever.y(), lever.z()},
+            g.arm_first,
+            g.arm_second,
+            terms.first,
+            terms.second};
   }
 
   /// Stability row terms of a touching contact in tension (arms longer
@@ -267,7 +263,7 @@ private:
   static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
 
   Law law_;
-  std::vector<SecondLoad> second_loads_;         ///< per entry, rewritten by every pass
+  std::vector<PairLoad> loads_;                 ///< per entry, rewritten by every pass
   std::vector<std::vector<BrokenBond>> broken_; ///< per thread, reused from step to step
 };
 
