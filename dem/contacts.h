@@ -16,8 +16,8 @@
 // second ball F = F_n n + F_s, the lever n x F_s of its torques
 // T_first = -arm_first (n x F_s) and T_second = -arm_second (n x F_s), the
 // arms R - U/2 (the contact point is at arm * n from the first centre and
-// -arm * n from the second).  The force pass (contact_model.h) sums loads
-// into the balls as it resolves the contacts; the table keeps no loads.
+// -arm * n from the second).  The force pass (contact_model.h) keeps the
+// loads of its step and sums them into the balls; the table keeps none.
 #pragma once
 
 #include "dem/contact.h"

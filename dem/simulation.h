@@ -111,9 +111,10 @@ class Simulation;
 /// state (with the table's merge scratch).  A dense packing
 /// with the default skin has about 7 candidate pairs per ball; 8 are
 /// counted, and half again for vector growth and the heap, so the estimate
-/// errs high: 7.7 kB per ball with three walls, against 3.3 kB measured
+/// errs high: 6.4 kB per ball with three walls, against 3.3 kB measured
 /// (peak resident memory, less the executable's own, of a 200000-ball fcc
-/// bench).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
+/// bench, before the force pass's loads went from 104 to 80 bytes per pair
+/// and the linear law's empty law state from 48 to none).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
 /// serves to refuse a run that cannot fit before allocating.
 double estimated_memory_bytes(double particles, int walls);
 
