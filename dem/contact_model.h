@@ -2,9 +2,10 @@
 // from the registry (law_registry.cpp).
 //
 // The virtual call happens once per step; inside, LawModel<Law> runs the
-// whole contact pass with the law inlined.  The pass is parallel over
-// contacts and each contact writes only its own entries, so results do not
-// depend on the thread count.
+// whole force pass (contacts resolved, each ball's resultant summed) with
+// the law inlined.  Each contact writes only its own entries and each
+// ball's sums keep one order (ball_forces.h), so results do not depend on
+// the thread count.
 //
 // A model holds the law's parameters and per-step constants only.  Every
 // contact's history, the law's own included (LawState), lives in the
@@ -17,12 +18,16 @@
 // describe the bitumen between grains.
 #pragma once
 
+#include "dem/ball_forces.h"
 #include "dem/contact_resolve.h"
 #include "dem/contacts.h"
 #include "dem/law_burgers.h"
 #include "dem/law_linear.h"
 #include "dem/stability.h"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -46,11 +51,16 @@ public:
   virtual ~ContactModel() = default;
   virtual std::string_view name() const = 0;
 
-  /// Resolves every entry of the table at the current positions; dt is the
-  /// step that produced the displacement since the last call.  Writes
-  /// table.loads() and returns how many bonds broke.
-  virtual std::size_t resolve_pairs(const ParticleStore &particles, ContactTable &table,
-                                    double dt) = 0;
+  /// The force pass of a step (ball_forces.h): resolves every entry of
+  /// the table at the current positions (dt is the step that produced the
+  /// displacement since the last pass) and sums each ball's resultant
+  /// force, torque and stability row bound into `balls`.  Appends the bonds
+  /// that broke, in increasing entry order, to `breaks`; returns the largest
+  /// row bound [1/s^2].
+  virtual double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) = 0;
+
+  /// Whether the law keeps history of its own in the table's LawState slots.
+  virtual bool keeps_law_state() const = 0;
 
   /// Elastic energy stored in all ball-ball contacts [J].
   virtual double stored_energy(const ContactTable &table) const = 0;
@@ -96,64 +106,73 @@ public:
   std::string_view name() const override { return Law::keyword; }
   const Law &law() const { return law_; }
 
-  std::size_t resolve_pairs(const ParticleStore &p, ContactTable &table, double dt) override
+  // The pass is one parallel region of two loops.  The first resolves
+  // every contact (each by one thread, each writing only its own entries)
+  // and leaves its loads on both balls in an 80-byte record; after the
+  // barrier, the second sums each ball's records, first the contacts where
+  // it is first, then those where it is second (via the table's second
+  // list), then its walls (ball_forces.h).  The sums keep that order, so
+  // results do not depend on the thread count.
+  double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
-    std::vector<Contact> &contacts = table.entries();
-    std::vector<ContactLoad> &loads = table.loads();
+    const ParticleStore &p = balls.particles;
+    Contact *const contacts = table.entries().data();
     LawState *const states = table.law_states().data();
-    BreakForces *const trial = table.break_forces().data();
+    const std::vector<std::size_t> &second_list = table.second_list();
+    loads_.resize(table.size());
+    PairLoad *const loads = loads_.data();
+    const auto pairs = static_cast<std::ptrdiff_t>(table.size());
+    const double dt = balls.dt;
     law_.prepare(dt);
-    const auto n = static_cast<std::ptrdiff_t>(contacts.size());
-    std::size_t breaks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : breaks)
-    for (std::ptrdiff_t c = 0; c < n; ++c)
+    const Index n = p.size();
+    broken_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    double largest = 0;
+#pragma omp parallel reduction(max : largest)
     {
-      Contact &k = contacts[c];
-      ContactLoad &load = loads[c];
-      const Index i = k.first, j = k.second;
-      if (!k.bond.intact && !k.state.touching)
+      std::vector<BrokenBond> &broken = broken_[static_cast<std::size_t>(omp_get_thread_num())];
+      broken.clear();
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t c = 0; c < pairs; ++c)
+        loads[c] = resolve_pair(p, contacts[c], states, static_cast<std::size_t>(c), dt, broken);
+#pragma omp for schedule(static)
+      for (Index b = 0; b < n; ++b)
       {
-        // Fast exit for candidates that are not touching.
-        const double reach = p.radius[i] + p.radius[j];
-        if ((p.position[j] - p.position[i]).squaredNorm() >= reach * reach)
+        double f[3], t[3] = {0, 0, 0};
+        balls.weight(b, f);
+        double bound = 0;
+        const std::size_t end = table.first_begin(b + 1);
+        for (std::size_t c = table.first_begin(b); c < end; ++c)
         {
-          load = ContactLoad{};
-          continue;
+          const PairLoad &load = loads[c];
+          for (int d = 0; d < 3; ++d)
+          {
+            f[d] -= load.force[d];
+            t[d] -= load.arm_first * load.lever[d];
+          }
+          bound += load.bound_first;
         }
+        const std::size_t last = table.second_begin(b + 1);
+        for (std::size_t k = table.second_begin(b); k < last; ++k)
+        {
+          const PairLoad &load = loads[second_list[k]];
+          for (int d = 0; d < 3; ++d)
+          {
+            f[d] += load.force[d];
+            t[d] -= load.arm_second * load.lever[d];
+          }
+          bound += load.bound_second;
+        }
+        largest = std::max(largest, balls.finish(b, f, t, bound));
       }
-      const ContactGeometry g = sphere_sphere(p, i, j);
-      typename Law::History history = Law::load(states[c]);
-      const ResolvedContact r = resolve_contact(law_, k.params, k.bond, k.state, history, g, dt);
-      if constexpr (stateful)
-        Law::store(history, states[c]);
-      if (r.broke != BreakMode::none)
-      {
-        ++breaks;
-        trial[c] = r.trial;
-      }
-      if (!r.touching)
-      {
-        load = ContactLoad{};
-        load.broke = r.broke;
-        continue;
-      }
-      load.broke = r.broke;
-      load.force = r.force;
-      load.lever = cross(g.normal, k.state.shear_force);
-      load.arm_first = g.arm_first;
-      load.arm_second = g.arm_second;
-      // In compression the arms are at most the radii and the precomputed
-      // terms hold; a bonded pair in tension has longer arms.
-      StabilityTerms bound = k.stability;
-      if (g.overlap < 0)
-        bound = contact_stability_terms(p, i, j, law_.normal_stiffness(k.params), law_.shear_stiffness(k.params),
-                                        arm_factor(g.arm_first, p.inv_radius[i]),
-                                        arm_factor(g.arm_second, p.inv_radius[j]));
-      load.bound_first = bound.first;
-      load.bound_second = bound.second;
     }
-    return breaks;
+    for (const std::vector<BrokenBond> &broken : broken_)
+      breaks.insert(breaks.end(), broken.begin(), broken.end());
+    std::sort(breaks.begin(), breaks.end(),
+              [](const BrokenBond &a, const BrokenBond &b) { return a.contact < b.contact; });
+    return largest;
   }
+
+  bool keeps_law_state() const override { return stateful; }
 
   double stored_energy(const ContactTable &table) const override
   {
@@ -162,7 +181,7 @@ public:
     {
       const ContactState &s = table[c].state;
       if (s.touching)
-        e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, Law::load(table.law_states()[c]));
+        e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, history_of(table.law_states(), c));
     }
     return e;
   }
@@ -173,10 +192,79 @@ public:
   }
 
 private:
+  /// What a contact gives its two balls at this step: the force F on the
+  /// second [N] (the first gets -F), the torques' lever n x F_s [N] and
+  /// arms [m] (T = -arm lever), and the stability row terms [1/s^2]; all
+  /// zero when the contact carries none.
+  struct PairLoad
+  {
+    double force[3];
+    double lever[3];
+    double arm_first, arm_second;
+    double bound_first, bound_second;
+  };
+
+  /// Resolves contact c at this step and returns its loads.
+  DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, LawState *states, std::size_t c,
+                                       double dt, std::vector<BrokenBond> &broken)
+  {
+    const Index i = k.first, j = k.second;
+    if (!k.bond.intact && !k.state.touching)
+    {
+      // Fast exit for candidates that are not touching.
+      const double reach = p.radius[i] + p.radius[j];
+      if ((p.position[j] - p.position[i]).squaredNorm() >= reach * reach)
+        return {};
+    }
+    const ContactGeometry g = sphere_sphere(p, i, j);
+    typename Law::History history{};
+    if constexpr (stateful)
+      history = Law::load(states[c]);
+    const ResolvedContact r = resolve_contact(law_, k.params, k.bond, k.state, history, g, dt);
+    if constexpr (stateful)
+      Law::store(history, states[c]);
+    if (r.broke != BreakMode::none)
+      broken.push_back({c, r.broke, r.trial});
+    if (!r.touching)
+      return {};
+    const Vec3 lever = cross(g.normal, r.shear);
+    // In compression the arms are at most the radii and the precomputed
+    // terms hold; a bonded pair in tension has longer arms.
+    const StabilityTerms terms = g.overlap < 0 ? tension_terms(p, k) : k.stability;
+    return {{r.force.x(), r.force.y(), r.force.z()},
+            {lever.x(), lever.y(), lever.z()},
+            g.arm_first,
+            g.arm_second,
+            terms.first,
+            terms.second};
+  }
+
+  /// Stability row terms of a touching contact in tension (arms longer
+  /// than the radii), from its state at this step.
+  StabilityTerms tension_terms(const ParticleStore &p, const Contact &k) const
+  {
+    const Index i = k.first, j = k.second;
+    const double overlap = k.state.overlap;
+    return contact_stability_terms(p, i, j, law_.normal_stiffness(k.params), law_.shear_stiffness(k.params),
+                                   arm_factor(p.radius[i] - 0.5 * overlap, p.inv_radius[i]),
+                                   arm_factor(p.radius[j] - 0.5 * overlap, p.inv_radius[j]));
+  }
+
   static constexpr bool stateful = !Law::state_fields.empty();
+
+  /// The law history of entry c (a law without one has no slots to read).
+  static typename Law::History history_of(const std::vector<LawState> &states, std::size_t c)
+  {
+    if constexpr (stateful)
+      return Law::load(states[c]);
+    else
+      return {};
+  }
   static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
 
   Law law_;
+  std::vector<PairLoad> loads_;                 ///< per entry, rewritten by every pass
+  std::vector<std::vector<BrokenBond>> broken_; ///< per thread, reused from step to step
 };
 
 /// The registry: one row per law keyword (law_registry.cpp).

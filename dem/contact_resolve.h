@@ -35,6 +35,7 @@ namespace dem
 struct ResolvedContact
 {
   Vec3 force = Vec3::Zero(); ///< N, on the second entity
+  Vec3 shear = Vec3::Zero(); ///< N, its shear part F_s (the new state's shear force)
   BreakMode broke = BreakMode::none;
   bool touching = false;
   BreakForces trial; ///< the law's forces at a break (set only when broke)
@@ -144,6 +145,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   state.touching = g.overlap > 0 || bond.intact;
   out.touching = state.touching;
   out.force = fn * g.normal + shear;
+  out.shear = shear;
   return out;
 }
 } // namespace dem

@@ -26,7 +26,8 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
   std::size_t old = 0;
   const auto keep_old = [&](std::size_t k) {
     scratch_.push_back(contacts_[k]);
-    scratch_states_.push_back(law_states_[k]);
+    if (law_slots_)
+      scratch_states_.push_back(law_states_[k]);
   };
   for (const Pair &pair : candidates)
   {
@@ -51,7 +52,8 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
       c.second = pair.second;
       c.params = pair_params(particles, pair.first, pair.second);
       scratch_.push_back(c);
-      scratch_states_.emplace_back();
+      if (law_slots_)
+        scratch_states_.emplace_back();
     }
   }
   for (; old < contacts_.size(); ++old)
@@ -75,7 +77,7 @@ void ContactTable::assign(std::vector<Contact> entries, std::vector<LawState> la
                                 std::to_string(entries.size()) + " contacts");
   contacts_ = std::move(entries);
   law_states_ = std::move(law_states);
-  law_states_.resize(contacts_.size());
+  law_states_.resize(law_slots_ ? contacts_.size() : 0);
   retired_ = retired;
   rebuild_adjacency(particles.size());
   changed_ = true;
@@ -96,12 +98,21 @@ Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
     c.params = pair_params(particles, i, j);
     it = contacts_.insert(it, c);
     const auto pos = it - contacts_.begin();
-    law_states_.insert(law_states_.begin() + pos, LawState{});
+    if (law_slots_)
+      law_states_.insert(law_states_.begin() + pos, LawState{});
     rebuild_adjacency(particles.size());
     changed_ = true;
     it = contacts_.begin() + pos;
   }
   return *it;
+}
+
+void ContactTable::keeps_law_states(bool keep)
+{
+  law_slots_ = keep;
+  law_states_.assign(keep ? contacts_.size() : 0, LawState{});
+  law_states_.shrink_to_fit();
+  scratch_states_ = {};
 }
 
 const Contact *ContactTable::find(Index i, Index j) const
@@ -121,8 +132,6 @@ Contact *ContactTable::find(Index i, Index j)
 
 void ContactTable::rebuild_adjacency(Index particles)
 {
-  loads_.resize(contacts_.size());
-  break_forces_.resize(contacts_.size());
   first_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   second_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   for (const Contact &c : contacts_)

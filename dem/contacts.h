@@ -12,10 +12,12 @@
 // pair starts with its law state at rest, and a bonded pair stays in the
 // table however far its balls drift apart.
 //
-// The per-step results (force on the second ball, torques on both, the
-// stability-bound contributions) live in a separate array of ContactLoad:
-// the contact pass writes one entry per contact and the particle pass gathers
-// them in a fixed order, so no two threads ever write the same particle.
+// A contact's load at a step follows from its state: the force on the
+// second ball F = F_n n + F_s, the lever n x F_s of its torques
+// T_first = -arm_first (n x F_s) and T_second = -arm_second (n x F_s), the
+// arms R - U/2 (the contact point is at arm * n from the first centre and
+// -arm * n from the second).  The force pass (contact_model.h) keeps the
+// loads of its step and sums them into the balls; the table keeps none.
 #pragma once
 
 #include "dem/contact.h"
@@ -42,24 +44,6 @@ struct Contact
   ContactBond bond;
   ContactState state;
   StabilityTerms stability;
-};
-
-/// What one contact contributes to its two balls at this step.  Torques
-/// follow from the lever: the contact point lies at arm * n from the first
-/// centre and -arm * n from the second, so T_first = -arm_first (n x F_s)
-/// and T_second = -arm_second (n x F_s).
-struct ContactLoad
-{
-  Vec3 force = Vec3::Zero();         ///< N, on the second ball (the first gets -force)
-  Vec3 lever = Vec3::Zero();         ///< N, n x F_s
-  double arm_first = 0;              ///< m
-  double arm_second = 0;             ///< m
-  double bound_first = 0;            ///< 1/s^2, stability-bound row term of the first ball
-  double bound_second = 0;           ///< 1/s^2, same for the second ball
-  BreakMode broke = BreakMode::none; ///< the bond broke at this step
-
-  Vec3 torque_first() const { return -arm_first * lever; }
-  Vec3 torque_second() const { return -arm_second * lever; }
 };
 
 /// Energy carried away by contacts that left the table.
@@ -98,14 +82,21 @@ public:
   const std::vector<Contact> &entries() const { return contacts_; }
   /// The contact law's own history of entry c is law_states()[c].  The
   /// entries may be edited in place; adding or removing them goes through
-  /// rebuild, assign or ensure, which keep the two arrays parallel.
+  /// rebuild, assign or ensure, which keep the two arrays parallel.  A
+  /// table told that its law keeps no history (keeps_law_states(false): the
+  /// linear law) holds no slots at all, 48 bytes less per pair.
   std::vector<LawState> &law_states() { return law_states_; }
   const std::vector<LawState> &law_states() const { return law_states_; }
-  std::vector<ContactLoad> &loads() { return loads_; }
-  const std::vector<ContactLoad> &loads() const { return loads_; }
-  /// Entry c's trial forces, valid where loads()[c].broke is set.
-  std::vector<BreakForces> &break_forces() { return break_forces_; }
-  const std::vector<BreakForces> &break_forces() const { return break_forces_; }
+  /// Whether entries carry a LawState slot (by default they do); turning
+  /// the slots off drops them, turning them on starts them all at rest.
+  void keeps_law_states(bool keep);
+  /// Force of entry c on its second ball at the last force pass [N]
+  /// (zero when it carried none).
+  Vec3 force(std::size_t c) const
+  {
+    const ContactState &s = contacts_[c].state;
+    return s.touching ? Vec3(s.normal_force * s.normal + s.shear_force) : Vec3::Zero();
+  }
 
   /// Contacts where p is the first ball: [first_begin(p), first_begin(p+1)).
   std::size_t first_begin(Index p) const { return first_start_[p]; }
@@ -130,10 +121,9 @@ private:
 
   std::vector<Contact> contacts_, scratch_;
   std::vector<LawState> law_states_, scratch_states_;
-  std::vector<ContactLoad> loads_;
-  std::vector<BreakForces> break_forces_;
   std::vector<std::size_t> first_start_, second_start_, second_list_, scratch_positions_;
   RetiredContactEnergy retired_;
   bool changed_ = false;
+  bool law_slots_ = true;
 };
 } // namespace dem

@@ -84,7 +84,7 @@ double unbalanced_force_ratio(const ParticleStore &particles, const ContactTable
   for (std::size_t c = 0; c < contacts.size(); ++c)
     if (contacts[c].state.touching)
     {
-      contact += contacts.loads()[c].force.norm();
+      contact += contacts.force(c).norm();
       ++touching;
     }
   if (touching == 0 || free_balls == 0 || contact == 0)
@@ -96,13 +96,12 @@ Tensor3 average_stress(const Simulation &sim, double volume)
 {
   const ParticleStore &p = sim.particles();
   Tensor3 sum = Tensor3::Zero();
-  const auto &loads = sim.contacts().loads();
   for (std::size_t c = 0; c < sim.contacts().size(); ++c)
   {
     const Contact &k = sim.contacts()[c];
     if (!k.state.touching)
       continue;
-    sum += loads[c].force * (p.position[k.second] - p.position[k.first]).transpose();
+    sum += sim.contacts().force(c) * (p.position[k.second] - p.position[k.first]).transpose();
   }
   const WallSet &walls = sim.walls();
   for (WallIndex w = 0; w < walls.size(); ++w)

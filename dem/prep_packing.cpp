@@ -451,7 +451,7 @@ void Preparation::bond_and_release()
   for (std::size_t c = 0; c < sim_->contacts().size(); ++c)
     if (sim_->contacts()[c].state.touching)
     {
-      force += sim_->contacts().loads()[c].force.norm();
+      force += sim_->contacts().force(c).norm();
       ++n;
     }
   report_.mean_contact_force_before = n ? force / n : 0;
@@ -472,7 +472,7 @@ void Preparation::bond_and_release()
   for (std::size_t c = 0; c < sim_->contacts().size(); ++c)
     if (sim_->contacts()[c].state.touching)
     {
-      const double f = sim_->contacts().loads()[c].force.norm();
+      const double f = sim_->contacts().force(c).norm();
       mean += f;
       largest = std::max(largest, f);
       ++n;

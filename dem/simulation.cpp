@@ -17,6 +17,7 @@ Simulation::Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<C
     settings_(settings)
 {
   const auto n = static_cast<std::size_t>(particles_.size());
+  contacts_.keeps_law_states(model_->keeps_law_state());
   walls_.resize_history(particles_.size());
   row_bound_.assign(n, 0);
   active_walls_.reserve(static_cast<std::size_t>(walls_.size()));
@@ -135,8 +136,7 @@ double estimated_memory_bytes(double particles, int walls)
                       + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
                       + 2 * sizeof(std::size_t)                  // contact table adjacency
                       + double(walls) * (sizeof(ContactState) + 1);
-  const double pair = sizeof(Pair) + 2 * sizeof(Contact) + 2 * sizeof(LawState) + sizeof(ContactLoad) +
-                      sizeof(BreakForces) + 2 * sizeof(std::size_t);
+  const double pair = sizeof(Pair) + 2 * sizeof(Contact) + 2 * sizeof(LawState) + 2 * sizeof(std::size_t);
   return 1.5 * particles * (ball + pairs_per_ball * pair);
 }
 
@@ -171,9 +171,15 @@ void Simulation::compute_forces()
     // constants are refreshed.
     model_->update_stability_terms(particles_, contacts_);
   }
-  if (model_->resolve_pairs(particles_, contacts_, dt_prev_) > 0)
-    record_breaks();
-  gather_forces();
+  active_walls_.clear();
+  for (WallIndex w = 0; w < walls_.size(); ++w)
+    if (walls_[w].enabled)
+      active_walls_.push_back(w);
+  const BallForces balls{particles_, walls_, active_walls_, settings_.gravity, dt_prev_, row_bound_, wall_power_};
+  broken_.clear();
+  // The bound of the contacts that exist; infinite when none carries force.
+  dt_critical_ = critical_step(model_->resolve_and_sum(contacts_, balls, broken_));
+  record_breaks();
   choose_time_step();
   if (!initial_recorded_)
   {
@@ -189,83 +195,12 @@ void Simulation::compute_forces()
 
 void Simulation::record_breaks()
 {
-  const auto &loads = contacts_.loads();
-  const auto &trial = contacts_.break_forces();
-  for (std::size_t c = 0; c < loads.size(); ++c)
+  for (const BrokenBond &b : broken_)
   {
-    if (loads[c].broke == BreakMode::none)
-      continue;
-    const Contact &k = contacts_[c];
-    breaks_.push_back({time_, k.first, k.second, loads[c].broke, trial[c].normal, trial[c].shear});
-    ++broken_count(loads[c].broke);
+    const Contact &k = contacts_[b.contact];
+    breaks_.push_back({time_, k.first, k.second, b.mode, b.trial.normal, b.trial.shear});
+    ++broken_count(b.mode);
   }
-}
-
-void Simulation::gather_forces()
-{
-  const Index n = particles_.size();
-  const auto &loads = contacts_.loads();
-  const auto &second_list = contacts_.second_list();
-  const LinearLaw wall_law;
-  const double dt = dt_prev_;
-  active_walls_.clear();
-  for (WallIndex w = 0; w < walls_.size(); ++w)
-    if (walls_[w].enabled)
-      active_walls_.push_back(w);
-  const int walls = static_cast<int>(active_walls_.size());
-  ParticleStore &P = particles_;
-  double largest = 0;
-
-#pragma omp parallel for schedule(static) reduction(max : largest)
-  for (Index p = 0; p < n; ++p)
-  {
-    Vec3 f = P.mass[p] * settings_.gravity;
-    Vec3 t = Vec3::Zero();
-    double bound = 0;
-    for (std::size_t c = contacts_.first_begin(p); c < contacts_.first_begin(p + 1); ++c)
-    {
-      f -= loads[c].force;
-      t -= loads[c].arm_first * loads[c].lever;
-      bound += loads[c].bound_first;
-    }
-    for (std::size_t k = contacts_.second_begin(p); k < contacts_.second_begin(p + 1); ++k)
-    {
-      const std::size_t c = second_list[k];
-      f += loads[c].force;
-      t -= loads[c].arm_second * loads[c].lever;
-      bound += loads[c].bound_second;
-    }
-    double power = 0;
-    for (int k = 0; k < walls; ++k)
-    {
-      const WallIndex w = active_walls_[k];
-      if (walls_.clearance(w, P.position[p]) >= P.radius[p] && !walls_.engaged(w, p))
-        continue;
-      ContactState &state = walls_.state(w, p);
-      const ContactGeometry g = walls_.geometry(w, P.position[p], P.radius[p], P.velocity[p], P.spin[p]);
-      const WallProps &wp = walls_[w].props;
-      const ContactParams params{in_series(P.kn[p], wp.kn), in_series(P.ks[p], wp.ks),
-                                 std::min(P.friction[p], wp.friction)};
-      ContactBond no_bond;
-      LinearLaw::History none;
-      const ResolvedContact r = resolve_contact(wall_law, params, no_bond, state, none, g, dt);
-      walls_.set_engaged(w, p, r.touching);
-      if (!r.touching)
-        continue;
-      f += r.force;
-      t -= g.arm_second * cross(g.normal, state.shear_force);
-      const double sb = arm_factor(g.arm_second, P.inv_radius[p]) * P.sqrt_shear_mobility[p];
-      bound += stability_row_term(params.kn, params.ks, P.inv_mass[p], sb * sb, 0.0, 0.0);
-      power += r.force.dot(walls_.surface_velocity(w, P.position[p]));
-    }
-    P.force[p] = f;
-    P.torque[p] = t;
-    row_bound_[p] = bound;
-    wall_power_[p] = power;
-    largest = std::max(largest, bound);
-  }
-  // The bound of the contacts that exist; infinite when none carries force.
-  dt_critical_ = critical_step(largest);
 }
 
 void Simulation::choose_time_step()

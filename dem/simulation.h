@@ -3,9 +3,10 @@
 // A step is a short pipeline:
 //
 //   compute_forces()   rebuild neighbours if a ball moved more than skin/2,
-//                      resolve ball-ball contacts (law + bonds + slip),
-//                      log bond breaks, gather forces per ball with walls and
-//                      gravity, choose the time step;
+//                      one force pass: resolve ball-ball contacts (law +
+//                      bonds + slip) and sum each ball's resultant with
+//                      walls and gravity (ball_forces.h); log bond breaks,
+//                      choose the time step;
 //   integrate()        centred differences with local damping (eq. 3.7-3.9),
 //                      energy increments, blow-up checks, walls move.
 //
@@ -19,9 +20,10 @@
 // update uses the mean of the old and new steps, which keeps the scheme
 // second order.
 //
-// Determinism: contacts write only their own entries, balls gather their
-// contacts in a fixed order and every reduction is order-free (max, min,
-// logical or) or serial, so results are identical for any thread count.
+// Determinism: each contact is resolved by the thread that owns its first
+// ball, each ball sums its loads in a fixed order (ball_forces.h) and every
+// reduction is order-free (max, min, logical or) or serial, so results are
+// identical for any thread count.
 #pragma once
 
 #include "dem/contact_model.h"
@@ -105,13 +107,14 @@ class Simulation;
 /// Memory a simulation of `particles` balls and `walls` walls needs [bytes],
 /// estimated from the engine's own arrays: the ball arrays and per-ball
 /// scratch, the wall history (one ContactState per wall and ball), the cell
-/// list, and for each neighbour pair its candidate, contact entry, law state,
-/// load and break forces (with the table's merge scratch).  A dense packing
+/// list, and for each neighbour pair its candidate, contact entry and law
+/// state (with the table's merge scratch).  A dense packing
 /// with the default skin has about 7 candidate pairs per ball; 8 are
 /// counted, and half again for vector growth and the heap, so the estimate
-/// errs high: 7.7 kB per ball with three walls, against 3.3 kB measured
+/// errs high: 6.4 kB per ball with three walls, against 3.3 kB measured
 /// (peak resident memory, less the executable's own, of a 200000-ball fcc
-/// bench).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
+/// bench, before the force pass's loads went from 104 to 80 bytes per pair
+/// and the linear law's empty law state from 48 to none).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
 /// serves to refuse a run that cannot fit before allocating.
 double estimated_memory_bytes(double particles, int walls);
 
@@ -227,7 +230,6 @@ public:
 
 private:
   void record_breaks();
-  void gather_forces();
   void choose_time_step();
   [[noreturn]] void fail(Index particle, const std::string &what) const;
   /// Strain energy stored in and friction work done by the contacts of wall w [J].
@@ -257,6 +259,7 @@ private:
   double removed_wall_strain_ = 0, removed_wall_friction_ = 0;
   bool initial_recorded_ = false;
 
+  std::vector<BrokenBond> broken_; ///< bonds broken by the last force pass
   std::vector<BondBreak> breaks_;
   std::size_t broken_tension_ = 0, broken_shear_ = 0, broken_displacement_ = 0;
   std::size_t &broken_count(BreakMode mode);

@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <omp.h>
+
 #include <string>
 
 using namespace demtest;
@@ -184,4 +186,54 @@ TEST_CASE("a snapshot of another law's state continues with every law state at r
   const dem::Simulation b(a.snapshot(), dem::make_contact_model("modified_burgers", {}), {});
   CHECK(b.contacts().size() == a.contacts().size());
   CHECK(non_rest_states(b.contacts()) == 0);
+}
+
+TEST_CASE("the force pass gives the same balls and break log on one to three threads", "[dem][threads]")
+{
+  // Contacts are resolved by the thread that owns their first ball and
+  // every ball sums its loads in one fixed order (dem/ball_forces.h), so the
+  // thread count must change nothing, bonds breaking included.
+  const int threads_before = omp_get_max_threads();
+  for (const char *law : {"linear", "burgers", "modified_burgers"})
+  {
+    INFO(law);
+    const auto run = [&](int threads) {
+      omp_set_num_threads(threads);
+      dem::Simulation sim = compressed_cylinder(law);
+      std::vector<dem::BondBreak> breaks;
+      for (int k = 0; k < 400; ++k)
+      {
+        sim.step();
+        for (const dem::BondBreak &b : sim.take_breaks())
+          breaks.push_back(b);
+      }
+      return std::make_pair(std::move(sim), std::move(breaks));
+    };
+    const auto [one, one_breaks] = run(1);
+    REQUIRE(one_breaks.size() > 10); // bonds break: the break log's order is tested too
+    for (int threads : {2, 3})
+    {
+      INFO(threads << " threads");
+      const auto [many, many_breaks] = run(threads);
+      bool same_balls = true;
+      for (dem::Index p = 0; p < one.particles().size(); ++p)
+        same_balls = same_balls && one.particles().position[p] == many.particles().position[p] &&
+                     one.particles().velocity[p] == many.particles().velocity[p] &&
+                     one.particles().spin[p] == many.particles().spin[p] &&
+                     one.particles().force[p] == many.particles().force[p] &&
+                     one.particles().torque[p] == many.particles().torque[p];
+      CHECK(same_balls);
+      REQUIRE(many_breaks.size() == one_breaks.size());
+      for (std::size_t k = 0; k < one_breaks.size(); ++k)
+      {
+        CHECK(many_breaks[k].first == one_breaks[k].first);
+        CHECK(many_breaks[k].second == one_breaks[k].second);
+        CHECK(many_breaks[k].mode == one_breaks[k].mode);
+        CHECK(many_breaks[k].normal_force == one_breaks[k].normal_force);
+      }
+      CHECK(many.time() == one.time());
+      CHECK(many.energy().residual() == one.energy().residual());
+    }
+  }
+  omp_set_num_threads(threads_before);
 }

@@ -6,7 +6,8 @@
 // the top platen down at 0.01 m/s; runs a warm-up, then times a fixed number
 // of steps (the fastest of `repeat` timings) and prints one line:
 // particles, contacts, steps, wall seconds, particle-steps per second,
-// contact updates per second, threads.
+// contact updates per second, threads, peak resident memory (the scenario
+// is dem/speed_bench.h, shared with the DEM-only bench/dem_bench.cpp).
 #pragma once
 
 #include <string>
