@@ -38,5 +38,7 @@ expect runs/course/e4-scaling/report.md "1 of 1 checks pass" "exercise 4: V16 pa
 expect runs/course/e5-identity/report.md "1 of 1 checks pass" "exercise 5: V19 passes"
 expect runs/course/e5-compare/summary.json "non_affine_ratio" "exercise 5: the compare run reports the non-affine ratio"
 expect runs/course/e5-modified/summary.json "difference_calibrated" "exercise 5: the modified-law comparison ran"
+expect course.log "PASS V24" "exercise 6: the calibration converges and meets its target"
+expect runs/course/e6-validation/report.md "| V25 |" "exercise 6: the validation check reports its verdict"
 [ "$fail" -eq 0 ] && echo "the course's commands ran and gave what its text describes"
 exit "$fail"
