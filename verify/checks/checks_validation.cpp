@@ -40,7 +40,6 @@
 
 #include "dem/rate_scaling.h"
 
-#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_fit.h>
 
 #include <nlohmann/json.hpp>
@@ -172,11 +171,6 @@ double number_at(const nlohmann::json &j, const char *key)
   return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : std::nan("");
 }
 
-/// 95 % Student-t half-width of a mean from its standard error over n values.
-double half_width_95(double standard_error, int n)
-{
-  return n > 1 ? gsl_cdf_tdist_Pinv(0.975, double(n - 1)) * standard_error : std::nan("");
-}
 } // namespace
 
 CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
@@ -267,13 +261,8 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                                    std::to_string(plan.first_seed + seed) + ": " + row.status + ": " + row.message);
         peaks.push_back(row.peak);
       }
-      double mean = 0;
-      for (const double v : peaks)
-        mean += v / double(peaks.size());
-      double squares = 0;
-      for (const double v : peaks)
-        squares += (v - mean) * (v - mean);
-      const double se = std::sqrt(squares / double(peaks.size() - 1) / double(peaks.size()));
+      const EnsembleStatistics st = ensemble_statistics(peaks);
+      const double mean = st.mean, se = st.se;
       const double law = law_peak(conditions[k]);
       const double u_val = std::hypot(se, law_relative_uncertainty * law);
       const double error = mean - law;
@@ -289,7 +278,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                           " %), u_val = " + num(u_val / 1e6) + " MPa");
       x[g].push_back(compensated(conditions[k]));
       y[g].push_back(mean);
-      bar[g].push_back(half_width_95(se, s.seeds));
+      bar[g].push_back(st.ci95);
     }
 
   // The slope of ln(peak) on ln(rate_T) over the held-out conditions,
@@ -325,7 +314,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   Curve calibrated = curve("calibration point (10 C, 0.1 1/s)", {compensated(calibration_condition)},
                            {number_at(t, "fitted_mean")}, CurveStyle::points);
   calibrated.point_type = 5;
-  calibrated.y_error = {half_width_95(number_at(t, "standard_error_of_mean"), c.value("seeds", 0))};
+  calibrated.y_error = {ensemble_statistics(t.at("by_seed").get<std::vector<double>>()).ci95};
   std::vector<Curve> curves = {law_curve, calibrated};
   for (std::size_t g = 0; g < configurations.size(); ++g)
   {

@@ -82,12 +82,6 @@ struct Evaluation
   std::vector<std::vector<double>> slope_se;   ///< its standard error over seeds
 };
 
-std::string trimmed(const std::string &s)
-{
-  const auto first = s.find_first_not_of(" \t");
-  return first == std::string::npos ? "" : s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
-
 double number_in(const std::string &text, const std::string &option, const std::string &expected)
 {
   std::size_t used = 0;
@@ -103,26 +97,6 @@ double number_in(const std::string &text, const std::string &option, const std::
   if (used == 0 || trimmed(text.substr(used)) != "" || !std::isfinite(v))
     throw DeckError(option + ": '" + text + "' is not a number: expected " + expected);
   return v;
-}
-
-double mean_of(const std::vector<double> &v)
-{
-  double s = 0;
-  for (const double x : v)
-    s += x;
-  return v.empty() ? nan : s / double(v.size());
-}
-
-/// Standard error of the mean (NaN below two values).
-double standard_error(const std::vector<double> &v)
-{
-  if (v.size() < 2)
-    return nan;
-  const double m = mean_of(v);
-  double squares = 0;
-  for (const double x : v)
-    squares += (x - m) * (x - m);
-  return std::sqrt(squares / double(v.size() - 1) / double(v.size()));
 }
 
 class Calibration
@@ -295,8 +269,9 @@ Point Calibration::read_point(const std::vector<SweepRow> &rows, std::size_t fir
   }
   for (std::size_t i = 0; i < targets_.size(); ++i)
   {
-    p.mean.push_back(mean_of(p.by_seed[i]));
-    p.se.push_back(standard_error(p.by_seed[i]));
+    const EnsembleStatistics st = ensemble_statistics(p.by_seed[i]);
+    p.mean.push_back(st.n == p.by_seed[i].size() ? st.mean : nan);
+    p.se.push_back(st.n == p.by_seed[i].size() ? st.se : nan);
     if (!std::isfinite(p.mean.back()) && exit_code_ == 0)
     {
       exit_code_ = 3;
@@ -361,8 +336,9 @@ const Evaluation *Calibration::evaluate(const std::vector<std::string> &values)
       for (int s = 0; s < o_.seeds; ++s)
         per_seed.push_back((e.stepped[j].by_seed[i][std::size_t(s)] - e.centre.by_seed[i][std::size_t(s)]) /
                            e.dx[j]);
-      e.slope[i][j] = mean_of(per_seed);
-      e.slope_se[i][j] = standard_error(per_seed);
+      const EnsembleStatistics st = ensemble_statistics(per_seed);
+      e.slope[i][j] = st.n == per_seed.size() ? st.mean : nan;
+      e.slope_se[i][j] = st.n == per_seed.size() ? st.se : nan;
     }
   // A step whose slope is lost in the seed noise is doubled for the next
   // Jacobian.

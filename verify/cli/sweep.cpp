@@ -65,12 +65,6 @@ std::vector<std::string> split(const std::string &text, char by)
   return parts;
 }
 
-std::string trimmed(const std::string &s)
-{
-  const auto first = s.find_first_not_of(" \t");
-  return first == std::string::npos ? "" : s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
-
 /// "SECTION/KEY=v1,v2,...", checked against the base deck.
 Varied parse_vary(const std::string &arg, const Deck &base)
 {
@@ -331,38 +325,6 @@ std::string quoted(std::string text)
   return out + "\"";
 }
 
-struct Stat
-{
-  std::size_t n = 0;
-  double mean = nan, sd = nan, ci95 = nan;
-};
-
-/// Mean, sample standard deviation and the 95 % Student-t half-width of
-/// the finite values (sd and half-width need two).
-Stat statistics(const std::vector<double> &all)
-{
-  std::vector<double> v;
-  for (const double x : all)
-    if (std::isfinite(x))
-      v.push_back(x);
-  Stat s;
-  s.n = v.size();
-  if (v.empty())
-    return s;
-  double sum = 0;
-  for (const double x : v)
-    sum += x;
-  s.mean = sum / double(v.size());
-  if (v.size() < 2)
-    return s;
-  double squares = 0;
-  for (const double x : v)
-    squares += (x - s.mean) * (x - s.mean);
-  s.sd = std::sqrt(squares / double(v.size() - 1));
-  s.ci95 = gsl_cdf_tdist_Pinv(0.975, double(v.size() - 1)) * s.sd / std::sqrt(double(v.size()));
-  return s;
-}
-
 /// Writes sweep.csv and stats.csv from the members' directories; returns
 /// the rows.
 std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan, const std::vector<Member> &members)
@@ -423,7 +385,8 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     for (const std::string &v : members[first].values)
       s << v << ",";
     s << n;
-    for (const Stat &st : {statistics(peak), statistics(strain), statistics(modulus)})
+    for (const EnsembleStatistics &st :
+         {ensemble_statistics(peak), ensemble_statistics(strain), ensemble_statistics(modulus)})
       s << "," << cell(st.mean) << "," << cell(st.sd) << "," << cell(st.ci95);
     s << "\n";
     first = last;
@@ -463,6 +426,31 @@ int sweep_threads(int requested, int ranks)
   return apply_threads({"", std::max(1, omp_get_num_procs() / ranks)});
 }
 } // namespace
+
+EnsembleStatistics ensemble_statistics(const std::vector<double> &values)
+{
+  std::vector<double> v;
+  for (const double x : values)
+    if (std::isfinite(x))
+      v.push_back(x);
+  EnsembleStatistics s;
+  s.n = v.size();
+  if (v.empty())
+    return s;
+  double sum = 0;
+  for (const double x : v)
+    sum += x;
+  s.mean = sum / double(v.size());
+  if (v.size() < 2)
+    return s;
+  double squares = 0;
+  for (const double x : v)
+    squares += (x - s.mean) * (x - s.mean);
+  s.sd = std::sqrt(squares / double(v.size() - 1));
+  s.se = std::sqrt(squares / double(v.size() - 1) / double(v.size()));
+  s.ci95 = gsl_cdf_tdist_Pinv(0.975, double(v.size() - 1)) * s.sd / std::sqrt(double(v.size()));
+  return s;
+}
 
 bool deck_declares(const Deck &deck, const std::string &key)
 {

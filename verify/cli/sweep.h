@@ -106,6 +106,21 @@ struct SweepOutcome
   std::string summary;          ///< one line: members by status, where the table is (rank 0)
 };
 
+/// The statistics of a seed ensemble over its finite values (n counts
+/// them): mean, sample standard deviation, standard error of the mean and
+/// the 95 % Student-t half-width (t with n - 1 degrees of freedom); the last
+/// three need two values, NaN otherwise.
+struct EnsembleStatistics
+{
+  std::size_t n = 0;
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  double sd = std::numeric_limits<double>::quiet_NaN();
+  double se = std::numeric_limits<double>::quiet_NaN();
+  double ci95 = std::numeric_limits<double>::quiet_NaN();
+};
+
+EnsembleStatistics ensemble_statistics(const std::vector<double> &values);
+
 /// Runs (or resumes) the members of a plan in settings.out_dir.  Bad input
 /// (the base deck, a key, a directory holding something else) is a
 /// DeckError before any member runs.

@@ -22,22 +22,13 @@ namespace Patterns = dealii::Patterns;
 
 namespace
 {
-std::string trim(std::string_view s)
-{
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string_view::npos)
-    return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return std::string(s.substr(b, e - b + 1));
-}
-
 std::vector<std::string> split(const std::string &s, char sep)
 {
   std::vector<std::string> out;
   std::string item;
   std::istringstream in(s);
   while (std::getline(in, item, sep))
-    out.push_back(trim(item));
+    out.push_back(trimmed(item));
   if (!s.empty() && s.back() == sep)
     out.emplace_back();
   return out;
@@ -85,6 +76,15 @@ struct Origin
   std::string where;
 };
 } // namespace
+
+std::string trimmed(std::string_view s)
+{
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string_view::npos)
+    return {};
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(b, e - b + 1));
+}
 
 std::string format_number(double v)
 {
@@ -290,7 +290,7 @@ struct Deck::Impl final : DeckSchema
       reject(o, "unknown key '" + key + "'" + suggestion(key) + "; `demvv defaults " + kind +
                   "` lists the keys of a " + kind + " deck");
     Entry &e = it->second;
-    const std::string value = trim(raw);
+    const std::string value = trimmed(raw);
     if (!valid_utf8(value))
       reject(o, "key '" + key + "' has value '" + escaped(value) +
                   "': not UTF-8 text: expected UTF-8 (save the deck as UTF-8; summaries and sample files are JSON, "
@@ -375,12 +375,12 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
   {
     ++line;
     const auto hash = raw.find('#');
-    const std::string s = trim(hash == std::string::npos ? raw : raw.substr(0, hash));
+    const std::string s = trimmed(hash == std::string::npos ? raw : raw.substr(0, hash));
     if (s.empty())
       continue;
     const std::string where = path + ":" + std::to_string(line);
     if (s.rfind("subsection ", 0) == 0)
-      stack.push_back(trim(s.substr(11)));
+      stack.push_back(trimmed(s.substr(11)));
     else if (s == "end")
     {
       if (stack.empty())
@@ -395,8 +395,8 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
       std::string key;
       for (const auto &sec : stack)
         key += sec + "/";
-      key += trim(s.substr(4, eq - 4));
-      out.push_back({key, trim(s.substr(eq + 1)), line});
+      key += trimmed(s.substr(4, eq - 4));
+      out.push_back({key, trimmed(s.substr(eq + 1)), line});
     }
     else
       throw DeckError(where + ": cannot read '" + s +
@@ -482,7 +482,7 @@ Deck Deck::from_file(const std::string &path, const std::vector<std::string> &ov
     const auto eq = o.find('=');
     if (eq == std::string::npos)
       throw DeckError("--set '" + o + "': expected SECTION/KEY=VALUE");
-    const std::string key = trim(o.substr(0, eq));
+    const std::string key = trimmed(o.substr(0, eq));
     if (key == "kind")
       throw DeckError("--set '" + o + "': the kind of a deck cannot be overridden");
     deck.impl_->assign(key, o.substr(eq + 1), {"--set " + key});
@@ -536,7 +536,7 @@ std::vector<double> Deck::real_list(const std::string &key) const
 {
   std::vector<double> out;
   const std::string &v = impl_->at(key).value;
-  if (trim(v).empty())
+  if (trimmed(v).empty())
     return out;
   for (const auto &item : split(v, ','))
     out.push_back(std::stod(item));

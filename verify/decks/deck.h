@@ -33,6 +33,9 @@ public:
 /// A number as decks and their errors write it (12 significant digits).
 std::string format_number(double v);
 
+/// `s` without blanks, tabs and line ends at either end.
+std::string trimmed(std::string_view s);
+
 /// How a kind declares its entries (implemented over deal.II in deck.cpp).
 class DeckSchema
 {
