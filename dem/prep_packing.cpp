@@ -317,6 +317,7 @@ void Preparation::reduce_stress()
     return;
   }
   const double fraction_before = solid_fraction();
+  report_.radius_reduction.push_back({report_.radius_change, sigma});
   // Stress grows with the overlaps; shrinking every radius by dR removes
   // 2 dR of every overlap, so the first guess removes the share of the mean
   // overlap that should go.  Then secant steps on sigma(scale), bisection
@@ -345,6 +346,7 @@ void Preparation::reduce_stress()
     scale_radii(scale / total);
     total = scale;
     sigma = equilibrate("reduce radii: scale 1 - " + fmt(1 - scale), false, 10 * s_.equilibrium_ratio).mean_stress;
+    report_.radius_reduction.push_back({report_.radius_change + scale - 1, sigma});
     // Near 1 kPa a frictionless packing relaxes very slowly and, left long
     // enough, can creep to unjamming: the first scale that brings the
     // stress into [5 %, 100 %] of the target is kept, and the bonds

@@ -83,12 +83,21 @@ struct StageReport
   double coordination = 0;           ///< ball-ball, 2 Nc / N
 };
 
+/// One step of the radius reduction (thesis Fig. 5.5): the radii's relative
+/// change from the packed sample and the mean stress once settled there.
+struct RadiusReductionStep
+{
+  double radius_change = 0; ///< relative, negative: reduced
+  double mean_stress = 0;   ///< Pa
+};
+
 struct PackingReport
 {
   long particles = 0;
   double cell_diameter = 0, cell_height = 0; ///< m, final cell
   std::vector<StageReport> stages;
   double radius_change = 0;          ///< relative change of the radii in stage 4 (negative: reduced)
+  std::vector<RadiusReductionStep> radius_reduction; ///< stage 4 step by step, from no change
   double solid_fraction_cost = 0;    ///< solid fraction lost by stage 4
   double stress_before_bonding = 0;  ///< Pa, mean stress after stages 4-5
   long rattlers_before = 0;          ///< balls below min_contacts before the expansion stage

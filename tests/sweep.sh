@@ -40,6 +40,7 @@ for r, m in zip(rows, members):
     for key in ("peak_stress_pa", "strain_at_peak", "initial_modulus_pa", "poisson_ratio"):
         assert math.isclose(float(r[key]), s[key], rel_tol=1e-10), (key, r[key], s[key])
     assert 0 <= float(r["bonds_broken_fraction_at_peak"]) <= 1, r
+    assert int(float(r["particles"])) == s["sample"]["particles"], (r["particles"], s["sample"])
     assert float(r["run_time_s"]) > 0, r
 peaks = [float(rows[i]["peak_stress_pa"]) for i in (0, 1)]
 assert peaks[0] != peaks[1], "two seeds gave the same peak stress"
@@ -52,7 +53,20 @@ assert math.isclose(float(stats[0]["peak_stress_mean_pa"]), mean, rel_tol=1e-10)
 assert math.isclose(float(stats[0]["peak_stress_sd_pa"]), sd, rel_tol=1e-10), stats[0]
 assert math.isclose(float(stats[0]["peak_stress_ci95_pa"]), t * sd / math.sqrt(2), rel_tol=1e-9), stats[0]
 assert stats[1]["peak_stress_mean_pa"] == "", stats[1]
+# The figure's data: the means against the friction (the refused point left
+# out), then every member, then the 95 % half-widths as error bars.
+blocks = [[[float(x) for x in l.split(",")] for l in b.strip().splitlines() if not l.startswith("#")]
+          for b in open(d + "/plots/peak_stress.csv").read().split("\n\n\n")]
+assert [p[0] for p in blocks[0]] == [0.2, 0.5], blocks[0]
+assert math.isclose(blocks[0][0][1], mean, rel_tol=1e-10), blocks[0]
+assert all(math.isclose(a, b, rel_tol=1e-10) for a, b in zip(sorted(p[1] for p in blocks[1][:2]), sorted(peaks))), blocks[1]
+assert math.isclose(blocks[2][0][2], t * sd / math.sqrt(2), rel_tol=1e-9), blocks[2]
 EOF
+if command -v gnuplot >/dev/null; then
+  for f in peak_stress strain_at_peak initial_modulus; do
+    grep -q "<svg" "$work/a/plots/$f.svg" || fail "the sweep's figure $f.svg was not drawn"
+  done
+fi
 
 # Resume: one member's directory gone; the rerun runs that one alone and
 # leaves the same table (run times aside).

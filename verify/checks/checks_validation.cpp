@@ -243,6 +243,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   SweepSettings settings;
   settings.out_dir = scratch.path() + "/validation";
   settings.progress = false;
+  settings.figures = false;
   const SweepOutcome outcome = run_sweep(plan, settings);
 
   CheckOutcome out;

@@ -312,6 +312,7 @@ const Evaluation *Calibration::evaluate(const std::vector<std::string> &values)
   SweepSettings settings = o_.settings;
   settings.out_dir = o_.settings.out_dir + "/evaluations/" + name;
   settings.replace = false;
+  settings.figures = false;
   const SweepOutcome outcome = run_sweep(plan, settings);
   if (outcome.exit_code != 0)
   {

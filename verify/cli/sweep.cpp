@@ -5,6 +5,8 @@
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 #include "verify/kinds/prepare.h"
+#include "verify/plot/gnuplot.h"
+#include "verify/plot/studies.h"
 #include "verify/run/analysis.h"
 #include "verify/run/run.h"
 
@@ -303,6 +305,8 @@ SweepRow read_row(const std::string &dir, const Member &m)
   row.modulus = number(summary, "initial_modulus_pa");
   row.poisson = number(summary, "poisson_ratio");
   row.broken = broken_at_peak(dir, summary);
+  if (summary.contains("sample") && summary.at("sample").is_object())
+    row.particles = number(summary.at("sample"), "particles");
   return row;
 }
 
@@ -340,10 +344,11 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
   t << "# demvv sweep of " << base_path
     << ": one row per member; units: peak_stress_pa [Pa], strain_at_peak [-], initial_modulus_pa [Pa], "
        "poisson_ratio [-], bonds_broken_fraction_at_peak [-] (at the peak stress; the final breakage where the "
-       "run has no series), run_time_s [s]; compression positive; seed empty: the deck's own seeds\n"
+       "run has no series), particles [-] (balls in the sample), run_time_s [s]; compression positive; seed empty: "
+       "the deck's own seeds\n"
     << "member," << keys
     << "seed,status,peak_stress_pa,strain_at_peak,initial_modulus_pa,poisson_ratio,bonds_broken_fraction_at_peak,"
-       "run_time_s,message\n";
+       "particles,run_time_s,message\n";
   for (std::size_t i = 0; i < members.size(); ++i)
   {
     const Member &m = members[i];
@@ -353,7 +358,7 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
       t << v << ",";
     t << (m.seed > 0 ? std::to_string(m.seed) : "") << "," << r.status << "," << cell(r.peak) << ","
       << cell(r.strain) << "," << cell(r.modulus) << "," << cell(r.poisson) << "," << cell(r.broken) << ","
-      << cell(r.seconds) << "," << (r.message.empty() ? "" : quoted(r.message)) << "\n";
+      << cell(r.particles) << "," << cell(r.seconds) << "," << (r.message.empty() ? "" : quoted(r.message)) << "\n";
   }
   write_atomically(out + "/sweep.csv", t.str());
 
@@ -393,6 +398,149 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
   }
   write_atomically(out + "/stats.csv", s.str());
   return rows;
+}
+
+/// A varied value as a number; NaN when it is not one.
+double as_number(const std::string &text)
+{
+  char *end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' && std::isfinite(v) ? v : nan;
+}
+
+/// What a sweep's figures are drawn against (the header says how it is
+/// chosen): x of each point, the axis label, the series each point is in.
+struct StudyAbscissa
+{
+  std::vector<double> x;
+  std::string label;
+  bool log = false;
+  std::vector<std::string> series; ///< title of each point's series
+  std::string caption;
+};
+
+StudyAbscissa study_abscissa(const SweepPlan &plan, const Deck &base, const std::vector<SweepRow> &rows)
+{
+  const std::size_t points = plan.points.size();
+  const std::size_t per_point = rows.size() / std::max<std::size_t>(points, 1);
+  const auto distinct = [](const std::vector<double> &x) { return std::set<double>(x.begin(), x.end()).size(); };
+  const auto finite = [](const std::vector<double> &x) {
+    return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+  };
+  StudyAbscissa a;
+  a.series.assign(points, "");
+  if (!plan.keys.empty())
+  {
+    std::vector<double> values, balls;
+    std::set<std::string> names;
+    for (std::size_t p = 0; p < points; ++p)
+    {
+      values.push_back(as_number(plan.points[p][0]));
+      names.insert(plan.points[p][0]);
+      std::vector<double> counts;
+      for (std::size_t i = p * per_point; i < (p + 1) * per_point; ++i)
+        counts.push_back(rows[i].particles);
+      balls.push_back(ensemble_statistics(counts).mean);
+    }
+    const std::string unit = base.unit(plan.keys[0]);
+    if (finite(values) && distinct(values) > 1)
+    {
+      a.x = values;
+      a.label = plan.keys[0] + (unit.empty() ? "" : " [" + unit + "]");
+    }
+    else if (finite(balls) && distinct(balls) == names.size() && names.size() > 1)
+    {
+      a.x = balls;
+      a.label = "balls in the sample [-] (" + plan.keys[0] + ")";
+    }
+  }
+  if (!a.x.empty())
+  {
+    for (std::size_t p = 0; p < points; ++p)
+      for (std::size_t j = 1; j < plan.keys.size(); ++j)
+        a.series[p] += (a.series[p].empty() ? "" : ", ") + plan.keys[j] + " = " + plan.points[p][j];
+    const double lo = *std::min_element(a.x.begin(), a.x.end()), hi = *std::max_element(a.x.begin(), a.x.end());
+    a.log = lo > 0 && hi >= 20 * lo;
+    return a;
+  }
+  a.label = "point of the sweep [-]";
+  for (std::size_t p = 0; p < points; ++p)
+  {
+    a.x.push_back(double(p + 1));
+    std::string values;
+    for (std::size_t j = 0; j < plan.keys.size(); ++j)
+      values += (values.empty() ? "" : ", ") + plan.keys[j] + " = " + plan.points[p][j];
+    a.caption += (a.caption.empty() ? "Points: " : "; ") + std::to_string(p + 1) + ": " + values;
+  }
+  return a;
+}
+
+struct StudyQuantity
+{
+  std::string name, title, axis;
+  double scale;
+  double SweepRow::*value;
+};
+
+/// The study's figures (peak stress, strain at peak, initial modulus) into
+/// DIR/plots; a figure gnuplot could not draw is one line, never fatal.
+void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Deck &base,
+                        const std::vector<SweepRow> &rows)
+{
+  const StudyAbscissa a = study_abscissa(plan, base, rows);
+  const std::size_t per_point = rows.size() / std::max<std::size_t>(plan.points.size(), 1);
+  const bool by_seed = plan.points.size() == 1 && plan.seeds > 1;
+  const std::vector<StudyQuantity> quantities = {
+    {"peak_stress", "Peak stress", "peak axial stress [MPa]", 1e-6, &SweepRow::peak},
+    {"strain_at_peak", "Strain at peak stress", "axial strain at peak [%]", 100, &SweepRow::strain},
+    {"initial_modulus", "Initial modulus", "initial modulus [GPa]", 1e-9, &SweepRow::modulus},
+  };
+  std::vector<Figure> figures;
+  for (const StudyQuantity &q : quantities)
+  {
+    std::vector<StudySeries> series;
+    for (std::size_t p = 0; p < plan.points.size(); ++p)
+    {
+      auto s = std::find_if(series.begin(), series.end(), [&](const StudySeries &t) { return t.title == a.series[p]; });
+      if (s == series.end())
+        s = series.insert(series.end(), StudySeries{a.series[p], {}, {}, {}, {}, {}});
+      std::vector<double> values;
+      for (std::size_t i = p * per_point; i < (p + 1) * per_point; ++i)
+        if (rows[i].status == "completed")
+        {
+          values.push_back(rows[i].*q.value);
+          s->member_x.push_back(by_seed ? double(plan.first_seed + int(i)) : a.x[p]);
+          s->member_y.push_back(rows[i].*q.value);
+        }
+      const EnsembleStatistics st = ensemble_statistics(values);
+      if (st.n == 0)
+        continue;
+      const std::vector<double> at =
+        by_seed ? std::vector<double>{double(plan.first_seed), double(plan.first_seed + plan.seeds - 1)}
+                : std::vector<double>{a.x[p]};
+      for (const double x : at)
+      {
+        s->x.push_back(x);
+        s->mean.push_back(st.mean);
+        s->ci95.push_back(st.ci95);
+      }
+    }
+    StudyAxes axes{q.name, q.title + " over the sweep", by_seed ? "seed [-]" : a.label, q.axis, 1, q.scale,
+                   !by_seed && a.log};
+    for (StudySeries &s : series)
+      if (s.title.empty())
+        s.title = by_seed ? "mean over the seeds" : "mean over seeds";
+    Figure f = parameter_study_figure(axes, series);
+    if (!a.caption.empty() && !by_seed)
+      f.caption += " " + a.caption + ".";
+    figures.push_back(std::move(f));
+  }
+  std::string missing;
+  for (const DrawnFigure &d : draw_figures(figures, out + "/plots"))
+    if (!d.drawn())
+      missing += (missing.empty() ? "" : "; ") + d.name + ": " + d.problem;
+  if (!missing.empty())
+    std::cerr << "demvv: sweep figures not drawn: " << missing << "\n";
 }
 
 /// Takes the sweep directory on rank 0: new or empty, or the same sweep's
@@ -576,6 +724,8 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
   }
   progress.finish();
   outcome.rows = write_tables(o.out_dir, plan, members);
+  if (o.figures)
+    draw_sweep_figures(o.out_dir, plan, base, outcome.rows);
   std::map<std::string, std::size_t> counts;
   for (const SweepRow &r : outcome.rows)
     ++counts[r.status];

@@ -24,10 +24,18 @@
 //
 // DIR/sweep.csv has a row per member (values, seed, status, peak stress,
 // strain at peak, initial modulus, Poisson's ratio, bond breakage at the
-// peak, run time); DIR/stats.csv has, per set of varied values, the mean,
-// standard deviation and 95 % Student-t confidence half-width over the
-// completed seeds.  Both are built from the members' run directories alone
-// (summary.json, series.csv), rewritten atomically as members complete.  A
+// peak, the sample's ball count, run time); DIR/stats.csv has, per set of
+// varied values, the mean, standard deviation and 95 % Student-t confidence
+// half-width over the completed seeds.  Both are built from the members'
+// run directories alone (summary.json, series.csv), rewritten atomically as
+// members complete.  DIR/plots holds the study's figures, drawn when the
+// sweep ends (gnuplot scripts and their data beside the SVG pictures): peak
+// stress, strain at peak and initial modulus, the mean over seeds with its
+// 95 % half-width and every member, against the first varied entry (its
+// values when they are numbers, else the ball count of each value's sample
+// when that tells them apart: a sweep over samples), one series per value
+// of the other entries; else against the seed (a seed ensemble) or the
+// point's number.  A
 // member that faults or whose deck is refused is a row with its status
 // and message; the others go on.  DIR/sweep.json holds the provenance.
 //
@@ -59,6 +67,7 @@ struct SweepSettings
   bool replace = false;
   int threads = 0;
   bool progress = true;
+  bool figures = true;      ///< draw DIR/plots when the sweep ends
   std::string command_line; ///< as typed, for sweep.json
 };
 
@@ -96,6 +105,7 @@ struct SweepRow
   double modulus = std::numeric_limits<double>::quiet_NaN(); ///< initial (fitted) modulus [Pa]
   double poisson = std::numeric_limits<double>::quiet_NaN(); ///< Poisson's ratio [-]
   double broken = std::numeric_limits<double>::quiet_NaN();  ///< bonds broken at the peak [-]
+  double particles = std::numeric_limits<double>::quiet_NaN(); ///< balls in the sample [-]
   double seconds = std::numeric_limits<double>::quiet_NaN(); ///< run time [s]
 };
 

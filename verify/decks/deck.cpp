@@ -107,6 +107,7 @@ struct Deck::Impl final : DeckSchema
     double min = 0;
     bool numeric = false;  // real, vector or list of reals: every item must be a normal double
     bool file = false;     // a file name, relative to the deck's folder unless absolute
+    std::string unit;      // of a number, vector or list ("-": dimensionless; "": not a number)
   };
 
   /// A repeated section: where it may appear and how an instance is declared.
@@ -172,11 +173,13 @@ struct Deck::Impl final : DeckSchema
     e.positive = min_exclusive;
     e.min = min;
     e.numeric = true;
+    e.unit = unit;
   }
   void integer(const std::string &name, long value, long min, long max, const std::string &help) override
   {
     add(name, std::to_string(value), std::make_unique<Patterns::Integer>(static_cast<int>(min), static_cast<int>(max)),
         "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]", help + " [-]");
+    entries[full(name)].unit = "-";
   }
   void choice(const std::string &name, const std::string &value, const std::vector<std::string> &options,
               const std::string &help) override
@@ -207,6 +210,7 @@ struct Deck::Impl final : DeckSchema
     add(name, value, std::make_unique<Patterns::List>(Patterns::Double(), 3, 3, ","),
         "three comma-separated numbers (" + unit + ")", help + " [" + unit + "]");
     entries[full(name)].numeric = true;
+    entries[full(name)].unit = unit;
   }
   void real_list(const std::string &name, const std::string &value, unsigned min_len, unsigned max_len,
                  const std::string &unit, const std::string &help) override
@@ -216,6 +220,7 @@ struct Deck::Impl final : DeckSchema
           " numbers (" + unit + ")",
         help + " [" + unit + "]");
     entries[full(name)].numeric = true;
+    entries[full(name)].unit = unit;
   }
 
   void repeated(const std::string &keyword, void (*declare)(DeckSchema &), const std::string &help) override
@@ -524,6 +529,7 @@ void Deck::set(const std::string &key, const std::string &value)
 }
 
 std::string Deck::text(const std::string &key) const { return impl_->at(key).value; }
+std::string Deck::unit(const std::string &key) const { return impl_->at(key).unit; }
 double Deck::real(const std::string &key) const { return std::stod(impl_->at(key).value); }
 long Deck::integer(const std::string &key) const { return std::stol(impl_->at(key).value); }
 bool Deck::flag(const std::string &key) const

@@ -141,6 +141,9 @@ public:
   void set(const std::string &key, const std::string &value);
 
   std::string text(const std::string &key) const;
+  /// The unit a numeric entry is declared in ("m/s"; "-": dimensionless;
+  /// "" for an entry that is not a number).
+  std::string unit(const std::string &key) const;
   double real(const std::string &key) const;
   long integer(const std::string &key) const;
   bool flag(const std::string &key) const;

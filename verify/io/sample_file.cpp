@@ -236,11 +236,15 @@ json report_json(const dem::PackingReport &r)
                       {"unbalanced_force_ratio", s.unbalanced_ratio},
                       {"solid_fraction", s.solid_fraction},
                       {"coordination_number", s.coordination}});
+  json reduction = json::array();
+  for (const auto &step : r.radius_reduction)
+    reduction.push_back({{"radius_change", step.radius_change}, {"mean_stress_pa", step.mean_stress}});
   return {{"particles", r.particles},
           {"cell_diameter_m", r.cell_diameter},
           {"cell_height_m", r.cell_height},
           {"stages", stages},
           {"radius_change", r.radius_change},
+          {"radius_reduction", reduction},
           {"solid_fraction_cost_of_radius_reduction", r.solid_fraction_cost},
           {"mean_stress_before_bonding_pa", r.stress_before_bonding},
           {"balls_below_min_contacts_before_expansion", r.rattlers_before},

@@ -57,6 +57,7 @@ struct Figure
   std::string x_label, y_label, y2_label; ///< with units
   bool log_x = false, log_y = false;
   bool equal_axes = false; ///< one unit as long on both axes (a mesh, a sample)
+  bool x_margins = false;  ///< 5 % of the x range free at either end (markers at the ends drawn whole)
   /// The y axis reaches at least this high (NaN: gnuplot's autoscale alone).
   double y_top_at_least = std::numeric_limits<double>::quiet_NaN();
   std::string key = "top left"; ///< gnuplot's key placement

@@ -186,6 +186,8 @@ std::string gnuplot_script(const Figure &f)
     o << "set logscale y\n";
   if (f.log_x || f.log_y)
     o << "set format " << (f.log_x ? "x" : "") << (f.log_y ? "y" : "") << " '%g'\n";
+  if (f.x_margins)
+    o << "set offsets graph 0.05, graph 0.05, 0, 0\n";
   if (f.equal_axes)
     o << "set size ratio -1\n";
   if (std::isfinite(f.y_top_at_least))

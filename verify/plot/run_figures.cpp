@@ -276,6 +276,40 @@ void gci_figures(const std::string &dir, const nlohmann::json &summary, std::vec
   }
 }
 
+/// Thesis Fig. 5.5: the mean stress of the packed sample against the
+/// reduction of every radius (stage 4 of the preparation), step by step,
+/// with the stress target the steps aim below.
+void prepare_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  const nlohmann::json &prep = summary.value("preparation", nlohmann::json::object());
+  if (!prep.contains("radius_reduction") || prep.at("radius_reduction").size() < 2)
+    return;
+  std::vector<double> change, stress;
+  for (const auto &step : prep.at("radius_reduction"))
+  {
+    change.push_back(step.at("radius_change").get<double>());
+    stress.push_back(step.at("mean_stress_pa").get<double>());
+  }
+  Figure f = make_figure("radius_reduction", "Isotropic stress against the reduction of the radii",
+                         "relative change of every radius [%]", "mean stress of the packing [Pa]",
+                         {curve("each step, settled", change, stress, CurveStyle::markers_and_line)},
+                         "Stage 4 of the preparation: every radius scaled, the packing settled, its mean stress "
+                         "measured (secant steps towards half the target).");
+  f.log_y = true;
+  f.key = "top right";
+  f.curves.front().x_scale = 100;
+  try
+  {
+    const double target = Deck::from_file(dir + "/deck.prm").real("preparation/stress target");
+    f.curves.push_back(curve("stress target", {change.front(), change.back()}, {target, target}, CurveStyle::dashed));
+    f.curves.back().x_scale = 100;
+  }
+  catch (const std::runtime_error &)
+  {
+  }
+  out.push_back(std::move(f));
+}
+
 void mms_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
 {
   const RunTable t(dir, "convergence.csv");
@@ -330,6 +364,8 @@ std::vector<Figure> run_figures(const std::string &run_dir)
     }
     else if (kind == "mms")
       mms_figures(run_dir, summary, out);
+    else if (kind == "prepare")
+      prepare_figures(run_dir, summary, out);
     else if (kind == "compare")
       compare_figures(RunTable(run_dir, "compare.csv"), out);
     return out;

@@ -12,7 +12,8 @@
 //              GCI figure of each quantity
 //   mms        errors against the refined size on log-log axes, with the
 //              theoretical orders
-//   prepare    none (ParaView frames in paraview/ show the sample)
+//   prepare    mean stress against the reduction of the radii (thesis Fig.
+//              5.5); ParaView frames in paraview/ show the sample
 //
 // Figures read the run's own CSV files (scripts in RUN_DIR/plots refer to
 // ../series.csv), so a figure of an older run is drawn from its data as it

@@ -77,4 +77,42 @@ Figure gci_figure(const std::string &name, const std::string &quantity, const Gc
   f.caption = text;
   return f;
 }
+
+Figure parameter_study_figure(const StudyAxes &axes, const std::vector<StudySeries> &series)
+{
+  Figure f;
+  f.name = axes.name;
+  f.title = axes.title;
+  f.x_label = axes.x_label;
+  f.y_label = axes.y_label;
+  f.log_x = axes.log_x;
+  f.key = "below";
+  f.x_margins = !axes.log_x; // a log axis already reaches whole decades
+  int colour = 0;
+  for (const StudySeries &s : series)
+  {
+    ++colour;
+    std::vector<Curve> curves = {curve(s.title, s.x, s.mean, CurveStyle::markers_and_line),
+                                 curve("", s.member_x, s.member_y, CurveStyle::points)};
+    curves[1].point_type = 6;
+    if (std::any_of(s.ci95.begin(), s.ci95.end(), [](double h) { return std::isfinite(h); }))
+    {
+      std::vector<double> half_width;
+      for (double h : s.ci95)
+        half_width.push_back(std::isfinite(h) ? h : 0.0);
+      curves.push_back(curve("", s.x, s.mean, CurveStyle::points));
+      curves.back().y_error = half_width;
+    }
+    for (Curve &c : curves)
+    {
+      c.colour = colour;
+      c.x_scale = axes.x_scale;
+      c.y_scale = axes.y_scale;
+      f.curves.push_back(std::move(c));
+    }
+  }
+  f.caption = "Lines join the means over seeds; bars: 95 % confidence half-width of the mean (Student t); open "
+              "circles: every member.";
+  return f;
+}
 } // namespace verify

@@ -9,6 +9,10 @@
 //    (h / h_1)^p with the observed order p, the extrapolated value f_ext and
 //    the band f_1 (1 +- GCI_fine) in which the exact value lies with the
 //    GCI's factor of safety.
+//  - parameter_study_figure: a parameter study over random seeds (a sweep):
+//    per series the seed-ensemble mean at each value, joined by a line, its
+//    95 % confidence half-width as error bars, and every member's own value
+//    as an open marker, so the scatter the mean hides stays visible.
 #pragma once
 
 #include "verify/plot/figure.h"
@@ -37,4 +41,23 @@ double richardson_value(const GciLevels &levels, double h);
 /// `h_scale`, `value_scale`: display units (e.g. 1e3 for mm, 1e-6 for MPa).
 Figure gci_figure(const std::string &name, const std::string &quantity, const GciLevels &levels, double h_scale,
                   double value_scale, const std::string &h_label, const std::string &value_label);
+
+/// One series of a parameter study: the mean over seeds and its 95 %
+/// half-width at each value (NaN half-widths: fewer than two seeds, no
+/// bars), and every completed member's value.
+struct StudySeries
+{
+  std::string title;
+  std::vector<double> x, mean, ci95;
+  std::vector<double> member_x, member_y;
+};
+
+struct StudyAxes
+{
+  std::string name, title, x_label, y_label;
+  double x_scale = 1, y_scale = 1; ///< display units, as Curve's
+  bool log_x = false;
+};
+
+Figure parameter_study_figure(const StudyAxes &axes, const std::vector<StudySeries> &series);
 } // namespace verify
