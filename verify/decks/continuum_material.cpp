@@ -98,13 +98,13 @@ void declare_continuum_material(DeckSchema &s)
   s.real("kelvin viscosity", 5e8, 0, inf, "Pa s", "Young-type Kelvin viscosity eta1.", true);
   s.leave();
   s.enter("contact");
-  s.real("maxwell stiffness", 5.5e6, 0, inf, "N/m", "Normal Maxwell stiffness K_m of a contact (thesis Table 7.2).",
+  s.real("maxwell stiffness", 5.5e6, 0, inf, "N/m", "Normal Maxwell stiffness K_m of a contact (thesis Table 7.3).",
          true);
-  s.real("maxwell viscosity", 6e4, 0, inf, "N s/m", "Normal Maxwell viscosity C_m (Table 7.2: 0.06 MN s/m).", true);
-  s.real("kelvin stiffness", 5.5e6, 0, inf, "N/m", "Normal Kelvin stiffness K_k (Table 7.2).", true);
-  s.real("kelvin viscosity", 6e4, 0, inf, "N s/m", "Normal Kelvin viscosity C_k (Table 7.2).", true);
+  s.real("maxwell viscosity", 6e4, 0, inf, "N s/m", "Normal Maxwell viscosity C_m (Table 7.3: 0.06 MN s/m).", true);
+  s.real("kelvin stiffness", 5.5e6, 0, inf, "N/m", "Normal Kelvin stiffness K_k (Table 7.3).", true);
+  s.real("kelvin viscosity", 6e4, 0, inf, "N s/m", "Normal Kelvin viscosity C_k (Table 7.3).", true);
   s.real("shear ratio", 1, 0, inf, "-",
-         "r: every shear constant is r times the normal one (the same-shape condition; Table 7.2 has r = 1).");
+         "r: every shear constant is r times the normal one (the same-shape condition; Table 7.3 has r = 1).");
   s.leave();
   s.enter("affine");
   s.real("coordination number", 5.8, 0, inf, "-", "Z of the packing (thesis ch. 5: 5.8).", true);
