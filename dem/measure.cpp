@@ -71,25 +71,36 @@ double coordination_number(const ParticleStore &particles, const ContactTable &c
   return particles.size() > 0 ? 2.0 * static_cast<double>(touching) / particles.size() : 0.0;
 }
 
+ContactForceStatistics contact_force_statistics(const ContactTable &contacts)
+{
+  ContactForceStatistics s;
+  double sum = 0;
+  for (std::size_t c = 0; c < contacts.size(); ++c)
+    if (contacts[c].state.touching)
+    {
+      const double f = contacts.force(c).norm();
+      sum += f;
+      s.largest = std::max(s.largest, f);
+      ++s.touching;
+    }
+  s.mean = s.touching ? sum / static_cast<double>(s.touching) : 0.0;
+  return s;
+}
+
 double unbalanced_force_ratio(const ParticleStore &particles, const ContactTable &contacts)
 {
-  double resultant = 0, contact = 0;
-  std::size_t free_balls = 0, touching = 0;
+  double resultant = 0;
+  std::size_t free_balls = 0;
   for (Index p = 0; p < particles.size(); ++p)
     if (!particles.holds_velocity(p))
     {
       resultant += particles.force[p].norm();
       ++free_balls;
     }
-  for (std::size_t c = 0; c < contacts.size(); ++c)
-    if (contacts[c].state.touching)
-    {
-      contact += contacts.force(c).norm();
-      ++touching;
-    }
-  if (touching == 0 || free_balls == 0 || contact == 0)
+  const ContactForceStatistics contact = contact_force_statistics(contacts);
+  if (free_balls == 0 || contact.mean == 0)
     return 0.0;
-  return (resultant / free_balls) / (contact / touching);
+  return (resultant / free_balls) / contact.mean;
 }
 
 Tensor3 average_stress(const Simulation &sim, double volume)

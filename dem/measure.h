@@ -51,6 +51,15 @@ double coordination_number(const ParticleStore &particles, const ContactTable &c
 /// 2 x touching contacts / balls, over the whole sample.
 double coordination_number(const ParticleStore &particles, const ContactTable &contacts);
 
+/// The magnitudes |F| of the touching ball-ball contacts' forces (normal and
+/// shear together) [N]: mean and largest over `touching` contacts (0 when none).
+struct ContactForceStatistics
+{
+  double mean = 0, largest = 0;
+  std::size_t touching = 0;
+};
+ContactForceStatistics contact_force_statistics(const ContactTable &contacts);
+
 /// Mean |resultant force| on free balls divided by the mean contact force
 /// magnitude (0 when no contact carries force).
 double unbalanced_force_ratio(const ParticleStore &particles, const ContactTable &contacts);

@@ -448,15 +448,7 @@ void Preparation::bond_and_release()
   const std::vector<int> count = contacts_per_ball(*sim_);
   report_.fewest_contacts = count.empty() ? 0 : *std::min_element(count.begin(), count.end());
   report_.coordination_before_bonding = coordination_number(sim_->particles(), sim_->contacts());
-  double force = 0;
-  std::size_t n = 0;
-  for (std::size_t c = 0; c < sim_->contacts().size(); ++c)
-    if (sim_->contacts()[c].state.touching)
-    {
-      force += sim_->contacts().force(c).norm();
-      ++n;
-    }
-  report_.mean_contact_force_before = n ? force / n : 0;
+  report_.mean_contact_force_before = contact_force_statistics(sim_->contacts()).mean;
 
   ParticleStore &p = sim_->particles();
   sim_->refresh_contacts();
@@ -469,19 +461,10 @@ void Preparation::bond_and_release()
   }
   sim_->set_wall_enabled(cell_.lateral, false);
   equilibrate("release: lateral wall removed, settled", false, s_.equilibrium_ratio);
-  double mean = 0, largest = 0;
-  n = 0;
-  for (std::size_t c = 0; c < sim_->contacts().size(); ++c)
-    if (sim_->contacts()[c].state.touching)
-    {
-      const double f = sim_->contacts().force(c).norm();
-      mean += f;
-      largest = std::max(largest, f);
-      ++n;
-    }
-  report_.locked_in_mean_force = n ? mean / n : 0;
-  report_.locked_in_max_force = largest;
-  say("locked-in forces: mean " + fmt(report_.locked_in_mean_force) + " N, largest " + fmt(largest) +
+  const ContactForceStatistics locked_in = contact_force_statistics(sim_->contacts());
+  report_.locked_in_mean_force = locked_in.mean;
+  report_.locked_in_max_force = locked_in.largest;
+  say("locked-in forces: mean " + fmt(locked_in.mean) + " N, largest " + fmt(locked_in.largest) +
       " N, against a mean contact force of " + fmt(report_.mean_contact_force_before) + " N before bonding");
 }
 

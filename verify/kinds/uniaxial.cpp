@@ -134,7 +134,7 @@ void write_gauge_study(const std::string &path, const Series &series, const std:
 const std::vector<std::string> series_columns = {
   "time_s", "axial_strain", "axial_stress_pa", "axial_stress_top_pa", "axial_stress_bottom_pa",
   "radial_strain", "bonds_broken_fraction", "bonds_broken_tension", "bonds_broken_shear", "bonds_broken_displacement",
-  "coordination_number", "coordination_number_spheres", "porosity_spheres", "unbalanced_force_ratio", "inertial_number", "time_step_s",
+  "coordination_number", "coordination_number_spheres", "mean_contact_force_n", "porosity_spheres", "unbalanced_force_ratio", "inertial_number", "time_step_s",
   "kinetic_energy_j", "strain_energy_j", "friction_dissipated_j", "damping_dissipated_j",
   "bond_energy_released_j", "boundary_work_j", "energy_residual_j"};
 } // namespace
@@ -334,7 +334,8 @@ public:
     const double installed = static_cast<double>(std::max<std::size_t>(bonds_.bonded, 1));
     row_ = {sim.time(), test_.axial_strain(sim), stress, s_top, s_bottom, gauges_.radial_strain(sim.particles()),
             (broken_t + broken_s + broken_d) / installed, broken_t, broken_s, broken_d,
-            dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination, porosity,
+            dem::coordination_number(sim.particles(), sim.contacts()), sphere_coordination,
+            dem::contact_force_statistics(sim.contacts()).mean, porosity,
             dem::unbalanced_force_ratio(sim.particles(), sim.contacts()), inertial, sim.time_step()};
     if (!spec_.gauge_study.empty())
     {
