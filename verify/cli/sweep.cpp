@@ -89,11 +89,18 @@ Varied parse_vary(const std::string &arg, const Deck &base)
   return v;
 }
 
-/// A value as part of a folder name: letters, digits, '.', '+', '-' kept.
+/// A value as part of a folder name: a file by its name (a case.prm by its
+/// folder's), without its extension; letters, digits, '.', '+', '-' kept.
 std::string folder_part(const std::string &value)
 {
+  std::string name = value;
+  if (value.find('/') != std::string::npos)
+  {
+    const fs::path file(value);
+    name = (file.filename() == "case.prm" ? file.parent_path().filename() : file.filename()).stem().string();
+  }
   std::string out;
-  for (const char c : value.substr(0, 16))
+  for (const char c : name.substr(0, 16))
     out += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-' ? c : '-';
   return out;
 }
