@@ -64,6 +64,14 @@ std::vector<std::string> fix_entries(SweepPlan &plan, const std::vector<std::str
   return values;
 }
 
+SweepOutcome run_sweep_in(const ScratchDirectory &scratch, const SweepPlan &plan)
+{
+  SweepSettings settings;
+  settings.out_dir = scratch.path() + "/sweep";
+  settings.progress = false;
+  return run_sweep(plan, settings);
+}
+
 const SweepRow &completed_member(const SweepOutcome &outcome, std::size_t index, const std::string &what)
 {
   const SweepRow &row = outcome.rows.at(index);

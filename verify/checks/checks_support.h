@@ -28,7 +28,6 @@ Deck load_case(const CheckContext &ctx, const std::string &name, const std::vect
 /// interpolated between rows; NaN if it never does.
 double first_crossing(const std::vector<double> &time, const std::vector<double> &values, double level);
 
-
 /// A directory under the system's temporary folder, removed with its
 /// contents when this goes out of scope: where a check runs a sweep.
 class ScratchDirectory
@@ -48,6 +47,10 @@ private:
 /// a sweep: appends their keys to plan.keys and returns their values, with
 /// which each point of the plan then begins.
 std::vector<std::string> fix_entries(SweepPlan &plan, const std::vector<std::string> &entries);
+
+/// Runs (or resumes) a sweep without progress output in a scratch
+/// directory, which holds the members' run directories while it lives.
+SweepOutcome run_sweep_in(const ScratchDirectory &scratch, const SweepPlan &plan);
 
 /// Member `index` of a sweep, or throws (failing the check) naming `what`
 /// when that member did not complete.

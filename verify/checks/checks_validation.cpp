@@ -204,10 +204,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
       plan.points.push_back(point);
     }
   const ScratchDirectory scratch;
-  SweepSettings settings;
-  settings.out_dir = scratch.path() + "/validation";
-  settings.progress = false;
-  const SweepOutcome outcome = run_sweep(plan, settings);
+  const SweepOutcome outcome = run_sweep_in(scratch, plan);
 
   CheckOutcome out;
   const std::vector<std::string> labels = {"strengths and stiffnesses scaled (slope built in)",
