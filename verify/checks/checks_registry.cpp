@@ -10,6 +10,7 @@
 #include "verify/checks/checks_contact.h"
 #include "verify/checks/checks_continuum.h"
 #include "verify/checks/checks_engine.h"
+#include "verify/checks/checks_solution.h"
 #include "verify/checks/checks_validation.h"
 
 namespace verify
@@ -156,6 +157,31 @@ const std::vector<Check> &check_registry()
      "validation comparison error E = S - D (ASME V&V 20); a 54-ball lattice (--quick), the 1000-ball sample "
      "(--full)",
      &check_table_7_4_validation},
+    {"V26", "Time step of a bulk compression", "bulk",
+     "demvv shall change a bonded uniaxial compression's stress at a fixed early strain by less than one step's "
+     "worth, and its peak stress by less than half the seed ensemble's relative standard deviation, when the time "
+     "step safety factor is halved from 0.8 to 0.4 and to 0.2; the GCI bound of the default 0.8 shall stay within one "
+     "step's worth and half the ensemble's 95 % half-width of one run.",
+     C::solution_verification, {T::C, T::D},
+     "Roache's GCI with the safety factor as the mesh size (Celik et al. 2008, J. Fluids Eng. 130:078001); the seed "
+     "ensemble of V28; a 54-ball lattice (--quick), the 1000-ball sample (--full)",
+     &check_time_step_safety},
+    {"V27", "Loading rate of a bulk compression (quasi-static limit)", "bulk",
+     "demvv shall change a bonded uniaxial compression's peak stress by less than half the seed ensemble's relative "
+     "standard deviation, and its stress at a fixed early strain by less than 1e-3 with a change that shrinks, "
+     "when the platen speed is halved from 0.02 m/s to 0.01 m/s and to 0.005 m/s.",
+     C::solution_verification, {T::B, T::D},
+     "thesis §6.3, Fig. 6.4: the peak converged at 0.01 m/s and below; the seed ensemble of V28; a 54-ball lattice "
+     "(--quick), the 1000-ball sample (--full)",
+     &check_loading_rate},
+    {"V28", "Seed ensemble of a bulk compression", "bulk",
+     "demvv shall quote a bonded uniaxial compression's peak stress as the mean over ten seeds with a 95 % "
+     "half-width below 10 % of it, every seed's run shall pass its peak, and two disjoint sets of five seeds shall "
+     "agree within twice their combined standard error.",
+     C::solution_verification, {T::D},
+     "Student-t confidence interval over independent samples; a 54-ball lattice with random bond strengths "
+     "(--quick), ten prepared 1000-ball samples (--full)",
+     &check_seed_ensemble},
   };
   return checks;
 }

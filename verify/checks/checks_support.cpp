@@ -1,6 +1,9 @@
 #include "verify/checks/checks_support.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <sstream>
 
@@ -33,6 +36,50 @@ double first_crossing(const std::vector<double> &time, const std::vector<double>
   return std::nan("");
 }
 
+
+ScratchDirectory::ScratchDirectory()
+{
+  static int count = 0;
+  path_ = (std::filesystem::temp_directory_path() /
+           ("demvv-check-" + std::to_string(::getpid()) + "-" + std::to_string(++count)))
+            .string();
+  std::filesystem::remove_all(path_);
+}
+
+ScratchDirectory::~ScratchDirectory()
+{
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+std::vector<std::string> fix_entries(SweepPlan &plan, const std::vector<std::string> &entries)
+{
+  std::vector<std::string> values;
+  for (const std::string &e : entries)
+  {
+    const std::size_t eq = e.find('=');
+    plan.keys.push_back(e.substr(0, eq));
+    values.push_back(e.substr(eq + 1));
+  }
+  return values;
+}
+
+SweepOutcome run_sweep_in(const ScratchDirectory &scratch, const SweepPlan &plan)
+{
+  SweepSettings settings;
+  settings.out_dir = scratch.path() + "/sweep";
+  settings.progress = false;
+  settings.figures = false; // a check draws its own figures
+  return run_sweep(plan, settings);
+}
+
+const SweepRow &completed_member(const SweepOutcome &outcome, std::size_t index, const std::string &what)
+{
+  const SweepRow &row = outcome.rows.at(index);
+  if (row.status != "completed")
+    throw std::runtime_error(what + ": " + row.status + ": " + row.message);
+  return row;
+}
 
 std::string num(double v)
 {

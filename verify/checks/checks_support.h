@@ -4,6 +4,7 @@
 #include "verify/run/analysis.h"
 
 #include "verify/checks/check.h"
+#include "verify/cli/sweep.h"
 #include "verify/decks/deck.h"
 #include "verify/kinds/scene.h"
 #include "verify/io/series.h"
@@ -27,6 +28,33 @@ Deck load_case(const CheckContext &ctx, const std::string &name, const std::vect
 /// interpolated between rows; NaN if it never does.
 double first_crossing(const std::vector<double> &time, const std::vector<double> &values, double level);
 
+/// A directory under the system's temporary folder, removed with its
+/// contents when this goes out of scope: where a check runs a sweep.
+class ScratchDirectory
+{
+public:
+  ScratchDirectory();
+  ~ScratchDirectory();
+  ScratchDirectory(const ScratchDirectory &) = delete;
+  ScratchDirectory &operator=(const ScratchDirectory &) = delete;
+  const std::string &path() const { return path_; }
+
+private:
+  std::string path_;
+};
+
+/// Sets the same entries ("SECTION/KEY=value", as --set) in every point of
+/// a sweep: appends their keys to plan.keys and returns their values, with
+/// which each point of the plan then begins.
+std::vector<std::string> fix_entries(SweepPlan &plan, const std::vector<std::string> &entries);
+
+/// Runs (or resumes) a sweep without progress output in a scratch
+/// directory, which holds the members' run directories while it lives.
+SweepOutcome run_sweep_in(const ScratchDirectory &scratch, const SweepPlan &plan);
+
+/// Member `index` of a sweep, or throws (failing the check) naming `what`
+/// when that member did not complete.
+const SweepRow &completed_member(const SweepOutcome &outcome, std::size_t index, const std::string &what);
 
 /// Formats a number for notes.
 std::string num(double v);

@@ -44,10 +44,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <unistd.h>
-
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -58,8 +55,6 @@ namespace verify
 {
 namespace
 {
-namespace fs = std::filesystem;
-
 constexpr double law_reference_stress = 10.3e6;  ///< sigma_0 [Pa] at 0.1 1/s and 283 K (eq. 4.4)
 constexpr double law_relative_uncertainty = 0.1; ///< assumed standard uncertainty of the law
 constexpr double law_exponent = 0.29;            ///< n (eq. 4.4)
@@ -112,32 +107,6 @@ Study study(const CheckContext &ctx)
                 "loading/strain rate=2.5"};
   return s;
 }
-
-/// A directory under the system's temporary folder, removed with its
-/// contents when this goes out of scope.
-class ScratchDirectory
-{
-public:
-  ScratchDirectory()
-  {
-    static int count = 0;
-    path_ = (fs::temp_directory_path() /
-             ("demvv-check-" + std::to_string(::getpid()) + "-" + std::to_string(++count)))
-              .string();
-    fs::remove_all(path_);
-  }
-  ~ScratchDirectory()
-  {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  ScratchDirectory(const ScratchDirectory &) = delete;
-  ScratchDirectory &operator=(const ScratchDirectory &) = delete;
-  const std::string &path() const { return path_; }
-
-private:
-  std::string path_;
-};
 
 /// The calibration's calibration.json, computed once per process and
 /// setting (V25 predicts with what V24 fitted).
@@ -222,12 +191,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   plan.base_deck = s.deck;
   plan.seeds = s.seeds;
   plan.first_seed = c.value("first_seed", 1) + c.value("seeds", 0); // seeds the calibration never saw
-  std::vector<std::string> fixed;
-  for (const std::string &o : s.sample)
-  {
-    plan.keys.push_back(o.substr(0, o.find('=')));
-    fixed.push_back(o.substr(o.find('=') + 1));
-  }
+  const std::vector<std::string> fixed = fix_entries(plan, s.sample);
   for (const char *key : {"bonds/normal strength", "bonds/shear strength", "rate/temperature",
                           "rate/physical strain rate", "rate/dependence"})
     plan.keys.push_back(key);
@@ -240,11 +204,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
       plan.points.push_back(point);
     }
   const ScratchDirectory scratch;
-  SweepSettings settings;
-  settings.out_dir = scratch.path() + "/validation";
-  settings.progress = false;
-  settings.figures = false;
-  const SweepOutcome outcome = run_sweep(plan, settings);
+  const SweepOutcome outcome = run_sweep_in(scratch, plan);
 
   CheckOutcome out;
   const std::vector<std::string> labels = {"strengths and stiffnesses scaled (slope built in)",
@@ -256,11 +216,10 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
       std::vector<double> peaks;
       for (int seed = 0; seed < s.seeds; ++seed)
       {
-        const SweepRow &row = outcome.rows.at((k * configurations.size() + g) * std::size_t(s.seeds) + seed);
-        if (row.status != "completed")
-          throw std::runtime_error(condition_name(conditions[k]) + ", " + labels[g] + ", seed " +
-                                   std::to_string(plan.first_seed + seed) + ": " + row.status + ": " + row.message);
-        peaks.push_back(row.peak);
+        peaks.push_back(completed_member(outcome, (k * configurations.size() + g) * std::size_t(s.seeds) + seed,
+                                         condition_name(conditions[k]) + ", " + labels[g] + ", seed " +
+                                           std::to_string(plan.first_seed + seed))
+                          .peak);
       }
       const EnsembleStatistics st = ensemble_statistics(peaks);
       const double mean = st.mean, se = st.se;

@@ -265,6 +265,7 @@ double broken_at_peak(const std::string &dir, const nlohmann::json &summary)
 SweepRow read_row(const std::string &dir, const Member &m)
 {
   SweepRow row;
+  row.directory = dir;
   nlohmann::json summary;
   try
   {

@@ -100,6 +100,7 @@ struct SweepRow
 {
   std::string status = "pending";
   std::string message;
+  std::string directory; ///< the member's run directory (its series.csv, summary.json)
   double peak = std::numeric_limits<double>::quiet_NaN();    ///< peak axial stress [Pa]
   double strain = std::numeric_limits<double>::quiet_NaN();  ///< axial strain at the peak [-]
   double modulus = std::numeric_limits<double>::quiet_NaN(); ///< initial (fitted) modulus [Pa]
