@@ -80,11 +80,7 @@ Figure gci_figure(const std::string &name, const std::string &quantity, const Gc
 
 Figure parameter_study_figure(const StudyAxes &axes, const std::vector<StudySeries> &series)
 {
-  Figure f;
-  f.name = axes.name;
-  f.title = axes.title;
-  f.x_label = axes.x_label;
-  f.y_label = axes.y_label;
+  Figure f = make_figure(axes.name, axes.title, axes.x_label, axes.y_label, {});
   f.log_x = axes.log_x;
   f.key = "below";
   f.x_margins = !axes.log_x; // a log axis already reaches whole decades
