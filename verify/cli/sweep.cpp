@@ -435,6 +435,13 @@ StudyAbscissa study_abscissa(const SweepPlan &plan, const Deck &base, const std:
   const auto finite = [](const std::vector<double> &x) {
     return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
   };
+  // "KEY = VALUE, ..." of point p's entries from the `from`-th on.
+  const auto entries = [&](std::size_t p, std::size_t from) {
+    std::string text;
+    for (std::size_t j = from; j < plan.keys.size(); ++j)
+      text += (text.empty() ? "" : ", ") + plan.keys[j] + " = " + plan.points[p][j];
+    return text;
+  };
   StudyAbscissa a;
   a.series.assign(points, "");
   if (!plan.keys.empty())
@@ -465,8 +472,7 @@ StudyAbscissa study_abscissa(const SweepPlan &plan, const Deck &base, const std:
   if (!a.x.empty())
   {
     for (std::size_t p = 0; p < points; ++p)
-      for (std::size_t j = 1; j < plan.keys.size(); ++j)
-        a.series[p] += (a.series[p].empty() ? "" : ", ") + plan.keys[j] + " = " + plan.points[p][j];
+      a.series[p] = entries(p, 1);
     const double lo = *std::min_element(a.x.begin(), a.x.end()), hi = *std::max_element(a.x.begin(), a.x.end());
     a.log = lo > 0 && hi >= 20 * lo;
     return a;
@@ -475,10 +481,7 @@ StudyAbscissa study_abscissa(const SweepPlan &plan, const Deck &base, const std:
   for (std::size_t p = 0; p < points; ++p)
   {
     a.x.push_back(double(p + 1));
-    std::string values;
-    for (std::size_t j = 0; j < plan.keys.size(); ++j)
-      values += (values.empty() ? "" : ", ") + plan.keys[j] + " = " + plan.points[p][j];
-    a.caption += (a.caption.empty() ? "Points: " : "; ") + std::to_string(p + 1) + ": " + values;
+    a.caption += (a.caption.empty() ? "Points: " : "; ") + std::to_string(p + 1) + ": " + entries(p, 0);
   }
   return a;
 }
@@ -537,7 +540,7 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
                    !by_seed && a.log};
     for (StudySeries &s : series)
       if (s.title.empty())
-        s.title = by_seed ? "mean over the seeds" : "mean over seeds";
+        s.title = "mean over seeds";
     Figure f = parameter_study_figure(axes, series);
     if (!a.caption.empty() && !by_seed)
       f.caption += " " + a.caption + ".";
