@@ -194,20 +194,23 @@ double total_seconds(const std::vector<MemberResult> &results)
   return t;
 }
 
-std::vector<double> peaks(const std::vector<MemberResult> &results)
+/// One quantity of every member, in order.
+std::vector<double> values_of(const std::vector<MemberResult> &results, double (*quantity)(const MemberResult &))
 {
-  std::vector<double> p;
+  std::vector<double> v;
   for (const MemberResult &r : results)
-    p.push_back(r.peak);
-  return p;
+    v.push_back(quantity(r));
+  return v;
 }
+
+double peak_of(const MemberResult &r) { return r.peak; }
+double stress_at_fixed_of(const MemberResult &r) { return r.series.stress_at_fixed; }
+
+std::vector<double> peaks(const std::vector<MemberResult> &results) { return values_of(results, peak_of); }
 
 std::vector<double> stresses_at_fixed(const std::vector<MemberResult> &results)
 {
-  std::vector<double> p;
-  for (const MemberResult &r : results)
-    p.push_back(r.series.stress_at_fixed);
-  return p;
+  return values_of(results, stress_at_fixed_of);
 }
 
 /// |a - b| / |b|: the change of a result from a level to the next.
@@ -459,16 +462,14 @@ CheckOutcome check_seed_ensemble(const CheckContext &ctx)
   {
     std::string name;
     std::string unit;
-    double MemberResult::*field;
+    double (*of)(const MemberResult &);
   };
-  for (const Quantity &q : {Quantity{"peak stress", "Pa", &MemberResult::peak},
-                            Quantity{"strain at the peak", "-", &MemberResult::strain_at_peak},
-                            Quantity{"initial modulus", "Pa", &MemberResult::modulus}})
+  for (const Quantity &q :
+       {Quantity{"peak stress", "Pa", peak_of},
+        Quantity{"strain at the peak", "-", [](const MemberResult &m) { return m.strain_at_peak; }},
+        Quantity{"initial modulus", "Pa", [](const MemberResult &m) { return m.modulus; }}})
   {
-    std::vector<double> v;
-    for (const MemberResult &m : r)
-      v.push_back(m.*q.field);
-    const EnsembleStatistics st = ensemble_statistics(v);
+    const EnsembleStatistics st = ensemble_statistics(values_of(r, q.of));
     out.notes.push_back(q.name + ": " + num(st.mean) + " +- " + num(st.ci95) + " " + q.unit + " (95 %, sd " +
                         num(st.sd) + " " + q.unit + ", " + std::to_string(st.n) + " seeds)");
   }

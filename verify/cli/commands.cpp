@@ -12,6 +12,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <csignal>
 #include <iostream>
 
@@ -55,14 +56,9 @@ void mark_output_failure(const std::string &run_dir, const std::string &why)
 /// Draws a run's figures; one line for what could not be drawn.
 void draw_run_figures(const std::string &run_dir, bool list_drawn)
 {
-  std::size_t drawn = 0;
-  std::string missing;
-  for (const DrawnFigure &f : plot_run(run_dir))
-  {
-    drawn += f.drawn() ? 1 : 0;
-    if (!f.drawn())
-      missing += (missing.empty() ? "" : "; ") + f.name + ": " + f.problem;
-  }
+  const std::vector<DrawnFigure> figures = plot_run(run_dir);
+  const auto drawn = std::count_if(figures.begin(), figures.end(), [](const DrawnFigure &f) { return f.drawn(); });
+  const std::string missing = undrawn(figures);
   if (list_drawn)
     std::cerr << "demvv: " << drawn << " figure" << (drawn == 1 ? "" : "s") << " in " << run_dir << "/plots\n";
   if (!missing.empty())

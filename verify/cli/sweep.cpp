@@ -546,10 +546,7 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
       f.caption += " " + a.caption + ".";
     figures.push_back(std::move(f));
   }
-  std::string missing;
-  for (const DrawnFigure &d : draw_figures(figures, out + "/plots"))
-    if (!d.drawn())
-      missing += (missing.empty() ? "" : "; ") + d.name + ": " + d.problem;
+  const std::string missing = undrawn(draw_figures(figures, out + "/plots"));
   if (!missing.empty())
     std::cerr << "demvv: sweep figures not drawn: " << missing << "\n";
 }

@@ -237,6 +237,15 @@ void write_figure_files(const Figure &f, const std::string &dir)
   write_atomically(dir + "/" + f.name + ".gp", gnuplot_script(f));
 }
 
+std::string undrawn(const std::vector<DrawnFigure> &figures)
+{
+  std::string text;
+  for (const DrawnFigure &f : figures)
+    if (!f.drawn())
+      text += (text.empty() ? "" : "; ") + f.name + ": " + f.problem;
+  return text;
+}
+
 bool gnuplot_available()
 {
   const char *path = std::getenv("PATH");

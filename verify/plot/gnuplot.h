@@ -29,6 +29,8 @@ std::string gnuplot_script(const Figure &figure);
 void write_figure_files(const Figure &figure, const std::string &dir);
 /// Writes the files of each figure and runs gnuplot on them, one process a figure.
 std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const std::string &dir);
+/// "NAME: PROBLEM; ..." of the figures that were not drawn ("" when all were).
+std::string undrawn(const std::vector<DrawnFigure> &figures);
 /// True when the gnuplot executable is on the PATH.
 bool gnuplot_available();
 } // namespace verify
