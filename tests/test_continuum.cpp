@@ -18,6 +18,8 @@
 #include "continuum/mms.h"
 #include "continuum/numerical_failure.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -63,7 +65,7 @@ BurgersSolid solid(BulkResponse bulk = BulkResponse::same_shape)
 
 std::string write_file(const std::string &name, const std::string &text)
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_continuum";
+  const fs::path dir = demvv_tests::test_folder("test_continuum");
   fs::create_directories(dir);
   std::ofstream(dir / name) << text;
   return (dir / name).string();
@@ -134,7 +136,7 @@ TEST_CASE("a failing ODE run stops with exit code 3 and keeps its outputs", "[co
 {
   const std::string deck = write_file("ode_fault.prm", "set kind = burgers_ode\nsubsection solver\n"
                                                        "  set max steps = 3\nend\n");
-  const std::string dir = (fs::temp_directory_path() / "demvv_test_continuum" / "ode_fault").string();
+  const std::string dir = (demvv_tests::test_folder("test_continuum") / "ode_fault").string();
   const verify::OdeResult r = verify::run_burgers_ode(verify::Deck::from_file(deck), {dir, 0, false});
   CHECK(r.status.fault);
   CHECK(r.status.message.find("CVODE") != std::string::npos);
@@ -335,7 +337,7 @@ TEST_CASE("bad continuum decks are refused with one line naming file, key, value
   }
   // The executable turns them into exit code 2 and one line on stderr.
   const std::string path = write_file("zero_height_cli.prm", bad[4].text);
-  const std::string err = (fs::temp_directory_path() / "demvv_test_continuum" / "err.txt").string();
+  const std::string err = (demvv_tests::test_folder("test_continuum") / "err.txt").string();
   const int status = std::system((std::string(DEMVV_EXECUTABLE) + " run " + path + " 2> " + err).c_str());
   CHECK(WEXITSTATUS(status) == 2);
   const std::string text = read_text(err);
@@ -345,7 +347,7 @@ TEST_CASE("bad continuum decks are refused with one line naming file, key, value
 #ifdef DEMVV_MPIRUN
 TEST_CASE("two MPI ranks give the serial answer of a bonded cylinder", "[continuum][mpi]")
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_continuum";
+  const fs::path dir = demvv_tests::test_folder("test_continuum");
   const std::string deck = std::string(DEMVV_CASES) + "/c04_cylinder_bonded_gci/case.prm";
   const std::string sets = " --set 'study/gci refinements=' --set discretisation/refinements=4"
                            " --set 'discretisation/time steps=5' 2> /dev/null";

@@ -5,6 +5,8 @@
 #include "verify/decks/deck_sections.h"
 #include "verify/kinds/scene.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -21,7 +23,7 @@ const std::string data = DEMVV_TEST_DATA;
 /// Writes a deck into a fresh temporary directory and returns its path.
 std::string write_deck(const std::string &name, const std::string &text)
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_decks";
+  const fs::path dir = demvv_tests::test_folder("test_decks");
   fs::create_directories(dir);
   const fs::path path = dir / name;
   std::ofstream(path) << text;
@@ -142,7 +144,7 @@ TEST_CASE("every kind's documented defaults read back as a deck", "[deck]")
 
 TEST_CASE("the resolved deck names its files absolute and reads the same files from another folder", "[deck]")
 {
-  const fs::path folder = fs::temp_directory_path() / "demvv_test_decks" / "relative";
+  const fs::path folder = demvv_tests::test_folder("test_decks") / "relative";
   fs::create_directories(folder);
   fs::copy_file(data + "/two_balls.csv", folder / "balls.csv", fs::copy_options::overwrite_existing);
   std::ofstream(folder / "case.prm") << "set kind = scene\nsubsection particles\n  set file = balls.csv\nend\n";
@@ -150,7 +152,7 @@ TEST_CASE("the resolved deck names its files absolute and reads the same files f
   const std::string absolute = fs::canonical(folder / "balls.csv").string();
   CHECK(deck.resolved().find("set file = " + absolute + "\n") != std::string::npos);
   CHECK(deck.text("particles/file") == "balls.csv"); // errors quote the deck as written
-  const fs::path elsewhere = fs::temp_directory_path() / "demvv_test_decks" / "elsewhere";
+  const fs::path elsewhere = demvv_tests::test_folder("test_decks") / "elsewhere";
   fs::create_directories(elsewhere);
   std::ofstream(elsewhere / "deck.prm") << deck.resolved();
   const verify::Deck again = verify::Deck::from_file((elsewhere / "deck.prm").string());

@@ -9,6 +9,8 @@
 
 #include "dem/types.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -82,7 +84,7 @@ TEST_CASE("a scene reports how many steps resolve the shortest contact period", 
   // period error above 1 %, so a warning; at safety 0.1, N = 10 pi, none.
   verify::Deck deck = verify::Deck::from_file(std::string(DEMVV_CASES) + "/v01_linear_impact/case.prm");
   deck.set("motion/fixed time step", "0");
-  const fs::path dir = fs::temp_directory_path() / "demvv_contact_resolution";
+  const fs::path dir = demvv_tests::test_folder("contact_resolution");
   fs::remove_all(dir);
   verify::run_scene(deck, {dir.string(), 0, false});
   nlohmann::json s = read_json(dir / "summary.json");

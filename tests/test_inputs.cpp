@@ -7,6 +7,8 @@
 #include "verify/io/output.h"
 #include "verify/io/sample_file.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -19,7 +21,7 @@ namespace fs = std::filesystem;
 
 std::string temp_path(const std::string &name)
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_inputs";
+  const fs::path dir = demvv_tests::test_folder("test_inputs");
   fs::create_directories(dir);
   return (dir / name).string();
 }

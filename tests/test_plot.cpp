@@ -9,6 +9,8 @@
 #include "verify/plot/run_figures.h"
 #include "verify/plot/studies.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -45,7 +47,7 @@ TEST_CASE("a figure script reads named columns with their display scale and a ri
 TEST_CASE("gnuplot draws a figure held in memory as SVG and reports a figure without data, not failing", "[plot]")
 {
   REQUIRE(verify::gnuplot_available()); // README and CI install gnuplot-nox
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_plot";
+  const fs::path dir = demvv_tests::test_folder("test_plot");
   fs::remove_all(dir);
   verify::Figure f;
   f.name = "parabola";
@@ -93,7 +95,7 @@ TEST_CASE("the Richardson curve of a GCI figure passes through the three levels 
 
 TEST_CASE("a uniaxial run directory gets the Fig. 6.1 pair and its other figures, plot refuses a non-run", "[plot]")
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_plot_run";
+  const fs::path dir = demvv_tests::test_folder("test_plot_run");
   fs::remove_all(dir);
   verify::Deck d = verify::Deck::defaults("uniaxial");
   d.set("sample/diameter", "0.008");

@@ -12,6 +12,8 @@
 #include "dem/servo.h"
 #include "dem/specimen.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -24,7 +26,7 @@ namespace fs = std::filesystem;
 
 std::string temp_path(const std::string &name)
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_prepare";
+  const fs::path dir = demvv_tests::test_folder("test_prepare");
   fs::create_directories(dir);
   return (dir / name).string();
 }

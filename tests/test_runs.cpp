@@ -7,6 +7,8 @@
 #include "verify/kinds/uniaxial.h"
 #include "verify/run/dem_driver.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -83,7 +85,7 @@ TEST_CASE("uniaxial compression gives positive axial stress and strain and negat
 
 TEST_CASE("a run directory holds the resolved deck and provenance and a complete series", "[run]")
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_run";
+  const fs::path dir = demvv_tests::test_folder("test_run");
   fs::remove_all(dir);
   const verify::Deck deck = small_uniaxial();
   verify::run_uniaxial(deck, {dir.string(), 0, false});
@@ -109,7 +111,7 @@ TEST_CASE("a numerical fault stops the run with a diagnostic and keeps valid out
   // The deck fixes a step five times the stability limit and allows it:
   // the run blows up, is stopped by the runaway guard, and the rows written
   // before stay whole.
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_fault";
+  const fs::path dir = demvv_tests::test_folder("test_fault");
   fs::remove_all(dir);
   verify::Deck d = verify::Deck::from_file(std::string(DEMVV_TEST_DATA) + "/unstable.prm");
   const auto r = verify::run_scene(d, {dir.string(), 0, false});
@@ -145,8 +147,8 @@ TEST_CASE("a paused run resumed from its checkpoint equals the run that never st
   const std::string law = GENERATE("linear", "burgers");
   INFO("law " << law);
   const verify::Deck deck = small_uniaxial(law);
-  const fs::path whole = fs::temp_directory_path() / ("demvv_resume_whole_" + law);
-  const fs::path split = fs::temp_directory_path() / ("demvv_resume_split_" + law);
+  const fs::path whole = demvv_tests::test_folder("resume_whole_" + law);
+  const fs::path split = demvv_tests::test_folder("resume_split_" + law);
   fs::remove_all(whole);
   fs::remove_all(split);
   const auto reference = verify::run_uniaxial(deck, {whole.string(), 1, false});
@@ -179,7 +181,7 @@ TEST_CASE("a paused run resumed from its checkpoint equals the run that never st
 
 TEST_CASE("a resume is refused for another deck or a directory without a checkpoint", "[run][resume]")
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_resume_refused";
+  const fs::path dir = demvv_tests::test_folder("resume_refused");
   fs::remove_all(dir);
   const verify::Deck deck = small_uniaxial("linear");
   CHECK_THROWS_AS(verify::check_resumable(dir.string(), deck), verify::DeckError);

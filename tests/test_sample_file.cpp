@@ -7,6 +7,8 @@
 #include "dem/bonds.h"
 #include "dem/specimen.h"
 
+#include "test_folder.h"
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -18,7 +20,7 @@ namespace fs = std::filesystem;
 
 std::string temp_path(const std::string &name)
 {
-  const fs::path dir = fs::temp_directory_path() / "demvv_test_sample_file";
+  const fs::path dir = demvv_tests::test_folder("test_sample_file");
   fs::create_directories(dir);
   return (dir / name).string();
 }
