@@ -56,9 +56,11 @@ struct BallForces
     double power = 0;
     for (const WallIndex w : active_walls)
     {
-      if (walls.clearance(w, P.position[p]) >= P.radius[p] && !walls.engaged(w, p))
+      ContactState *kept = walls.history_of(w, p);
+      if (walls.clearance(w, P.position[p]) >= P.radius[p] && !(kept && kept->touching))
         continue;
-      ContactState &state = walls.state(w, p);
+      ContactState fresh; // a ball that never touched this wall starts at rest
+      ContactState &state = kept ? *kept : fresh;
       const ContactGeometry g = walls.geometry(w, P.position[p], P.radius[p], P.velocity[p], P.spin[p]);
       const WallProps &wp = walls[w].props;
       const ContactParams params{in_series(P.kn[p], wp.kn), in_series(P.ks[p], wp.ks),
@@ -66,9 +68,10 @@ struct BallForces
       ContactBond no_bond;
       LinearLaw::History none;
       const ResolvedContact r = resolve_contact(LinearLaw{}, params, no_bond, state, none, g, dt);
-      walls.set_engaged(w, p, r.touching);
       if (!r.touching)
         continue;
+      if (!kept)
+        walls.keep_new_contact(w, p, fresh);
       const Vec3 lever = cross(g.normal, r.shear);
       for (int d = 0; d < 3; ++d)
       {

@@ -28,19 +28,19 @@ Simulation::Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<C
 
 namespace
 {
-WallSet assemble_walls(const std::vector<Wall> &walls, Index particles, std::vector<ContactState> history)
+WallSet assemble_walls(const std::vector<Wall> &walls, Index particles, const std::vector<WallContact> &history)
 {
   WallSet set;
   for (const Wall &w : walls)
     set.add(w);
   set.resize_history(particles);
-  set.restore_history(std::move(history));
+  set.restore_history(history);
   return set;
 }
 } // namespace
 
 Simulation::Simulation(Snapshot snap, std::unique_ptr<ContactModel> model, SimulationSettings settings)
-  : Simulation(std::move(snap.particles), assemble_walls(snap.walls, snap.particles.size(), std::move(snap.wall_history)),
+  : Simulation(std::move(snap.particles), assemble_walls(snap.walls, snap.particles.size(), snap.wall_contacts),
                std::move(model), settings)
 {
   std::vector<LawState> law_states;
@@ -68,7 +68,7 @@ Snapshot Simulation::snapshot() const
   s.particles = particles_;
   for (WallIndex w = 0; w < walls_.size(); ++w)
     s.walls.push_back(walls_[w]);
-  s.wall_history = walls_.history();
+  s.wall_contacts = walls_.contacts();
   s.contacts = contacts_.entries();
   s.contact_law = model_->name();
   s.law_states = contacts_.law_states();
@@ -135,7 +135,7 @@ double estimated_memory_bytes(double particles, int walls)
                       + 2 * sizeof(double) + sizeof(BallEnergy)   // step scratch, energy ledger
                       + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
                       + 2 * sizeof(std::size_t)                  // contact table adjacency
-                      + double(walls) * (sizeof(ContactState) + 1);
+                      + double(walls) * sizeof(std::int32_t) + sizeof(WallContact);
   const double pair = sizeof(Pair) + 2 * sizeof(Contact) + 2 * sizeof(LawState) + 2 * sizeof(std::size_t);
   return 1.5 * particles * (ball + pairs_per_ball * pair);
 }
@@ -177,8 +177,10 @@ void Simulation::compute_forces()
       active_walls_.push_back(w);
   const BallForces balls{particles_, walls_, active_walls_, settings_.gravity, dt_prev_, row_bound_, wall_power_};
   broken_.clear();
+  walls_.open_pass(omp_get_max_threads());
   // The bound of the contacts that exist; infinite when none carries force.
   dt_critical_ = critical_step(model_->resolve_and_sum(contacts_, balls, broken_));
+  walls_.close_pass();
   record_breaks();
   choose_time_step();
   if (!initial_recorded_)

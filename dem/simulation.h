@@ -95,7 +95,7 @@ struct Snapshot
 {
   ParticleStore particles;
   std::vector<Wall> walls;
-  std::vector<ContactState> wall_history; ///< (wall, ball) wall-major
+  std::vector<WallContact> wall_contacts; ///< increasing (wall, ball); only balls that touched a wall
   std::vector<Contact> contacts;          ///< sorted by (first, second)
   std::string contact_law;                ///< keyword of the law of law_states (empty: none)
   std::vector<LawState> law_states;       ///< one per contact, or none (all at rest)
@@ -106,12 +106,13 @@ class Simulation;
 
 /// Memory a simulation of `particles` balls and `walls` walls needs [bytes],
 /// estimated from the engine's own arrays: the ball arrays and per-ball
-/// scratch, the wall history (one ContactState per wall and ball), the cell
+/// scratch, the wall histories (an index entry per wall and ball, and a
+/// history per ball: a layer of balls on a floor has one each), the cell
 /// list, and for each neighbour pair its candidate, contact entry and law
 /// state (with the table's merge scratch).  A dense packing
 /// with the default skin has about 7 candidate pairs per ball; 8 are
 /// counted, and half again for vector growth and the heap, so the estimate
-/// errs high: 6.4 kB per ball with three walls, against 3.3 kB measured
+/// errs high: 6.2 kB per ball with three walls, against 3.3 kB measured
 /// (peak resident memory, less the executable's own, of a 200000-ball fcc
 /// bench, before the force pass's loads went from 104 to 80 bytes per pair
 /// and the linear law's empty law state from 48 to none).  Doubles, so that absurd counts (1e13 balls) do not overflow: it

@@ -1,7 +1,10 @@
 #include "dem/walls.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace dem
 {
@@ -9,8 +12,7 @@ WallIndex WallSet::add(Wall w)
 {
   w.direction.normalize();
   walls_.push_back(std::move(w));
-  history_.resize(stride_ * walls_.size());
-  engaged_.resize(stride_ * walls_.size(), 0);
+  slot_.resize(stride_ * walls_.size(), -1);
   return static_cast<WallIndex>(walls_.size() - 1);
 }
 
@@ -80,10 +82,9 @@ Vec3 WallSet::surface_velocity(WallIndex w, const Vec3 &x) const
 void WallSet::set_enabled(WallIndex w, bool enabled)
 {
   walls_[w].enabled = enabled;
-  std::fill(history_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0)),
-            history_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0) + stride_), ContactState{});
-  std::fill(engaged_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0)),
-            engaged_.begin() + static_cast<std::ptrdiff_t>(slot(w, 0) + stride_), 0);
+  kept_.erase(std::remove_if(kept_.begin(), kept_.end(), [w](const WallContact &c) { return c.wall == w; }),
+              kept_.end());
+  index_kept();
 }
 
 void WallSet::advance(double dt)
@@ -95,21 +96,71 @@ void WallSet::advance(double dt)
   }
 }
 
-void WallSet::restore_history(std::vector<ContactState> history)
+void WallSet::index_kept()
 {
-  if (history.size() != history_.size())
-    return; // a snapshot from another layout: start without wall history
-  history_ = std::move(history);
-  for (std::size_t k = 0; k < history_.size(); ++k)
-    engaged_[k] = history_[k].touching ? 1 : 0;
+  std::fill(slot_.begin(), slot_.end(), -1);
+  for (std::size_t k = 0; k < kept_.size(); ++k)
+    slot_[slot(kept_[k].wall, kept_[k].ball)] = static_cast<std::int32_t>(k);
+}
+
+void WallSet::open_pass(int threads)
+{
+  new_.resize(static_cast<std::size_t>(std::max(threads, 1)));
+  for (std::vector<WallContact> &list : new_)
+    list.clear();
+}
+
+void WallSet::keep_new_contact(WallIndex w, Index p, const ContactState &state)
+{
+  new_[static_cast<std::size_t>(omp_get_thread_num())].push_back({w, p, state});
+}
+
+void WallSet::close_pass()
+{
+  const std::size_t first = kept_.size();
+  for (const std::vector<WallContact> &list : new_)
+    kept_.insert(kept_.end(), list.begin(), list.end());
+  // The order of the lists depends on the threads; the order kept does not.
+  std::sort(kept_.begin() + static_cast<std::ptrdiff_t>(first), kept_.end(),
+            [](const WallContact &a, const WallContact &b) { return std::tie(a.wall, a.ball) < std::tie(b.wall, b.ball); });
+  for (std::size_t k = first; k < kept_.size(); ++k)
+    slot_[slot(kept_[k].wall, kept_[k].ball)] = static_cast<std::int32_t>(k);
+}
+
+std::vector<WallContact> WallSet::contacts() const
+{
+  std::vector<WallContact> out;
+  out.reserve(kept_.size());
+  for (WallIndex w = 0; w < size(); ++w)
+    for (Index p = 0; p < static_cast<Index>(stride_); ++p)
+      if (slot_[slot(w, p)] >= 0)
+        out.push_back({w, p, state(w, p)});
+  return out;
+}
+
+void WallSet::restore_history(const std::vector<WallContact> &contacts)
+{
+  for (const WallContact &c : contacts)
+    if (c.wall < 0 || c.wall >= size() || c.ball < 0 || static_cast<std::size_t>(c.ball) >= stride_)
+      return; // a snapshot from another layout: start without wall history
+  for (const WallContact &c : contacts)
+  {
+    if (ContactState *kept = history_of(c.wall, c.ball))
+      *kept = c.state;
+    else
+    {
+      slot_[slot(c.wall, c.ball)] = static_cast<std::int32_t>(kept_.size());
+      kept_.push_back(c);
+    }
+  }
 }
 
 void WallSet::resize_history(Index particles)
 {
-  if (stride_ == static_cast<std::size_t>(particles) && history_.size() == stride_ * walls_.size())
-    return; // already laid out for these balls: keep the history
+  if (stride_ == static_cast<std::size_t>(particles) && slot_.size() == stride_ * walls_.size())
+    return; // already laid out for these balls: keep the histories
   stride_ = static_cast<std::size_t>(particles);
-  history_.assign(stride_ * walls_.size(), ContactState{});
-  engaged_.assign(stride_ * walls_.size(), 0);
+  kept_.clear();
+  slot_.assign(stride_ * walls_.size(), -1);
 }
 } // namespace dem

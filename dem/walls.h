@@ -16,6 +16,7 @@
 
 #include "dem/contact.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,14 @@ struct Wall
 
 using WallIndex = int;
 
+/// The contact history of one ball with one wall (the wall is the first entity).
+struct WallContact
+{
+  WallIndex wall = 0;
+  Index ball = 0;
+  ContactState state;
+};
+
 class WallSet
 {
 public:
@@ -79,26 +88,48 @@ public:
   /// Moves every wall by its velocity over dt.
   void advance(double dt);
 
-  /// Per (wall, particle) contact history; resize_history() lays it out
-  /// (empty) for a number of balls, and keeps it if already laid out so.
+  /// The contact histories of ball-wall pairs, kept only for the balls that
+  /// have touched a wall (a few per cent of a sample: the balls at its
+  /// faces); every other pair reads as a contact at rest.  resize_history()
+  /// lays out the index (four bytes per wall and ball) for a number of
+  /// balls, and keeps the histories if already laid out so.
   void resize_history(Index particles);
-  ContactState &state(WallIndex w, Index p) { return history_[slot(w, p)]; }
-  const ContactState &state(WallIndex w, Index p) const { return history_[slot(w, p)]; }
-  /// All contact histories, wall-major, and their restoration (snapshots).
-  const std::vector<ContactState> &history() const { return history_; }
-  void restore_history(std::vector<ContactState> history);
+  /// The contact of ball p with wall w at the last update (at rest if none).
+  const ContactState &state(WallIndex w, Index p) const
+  {
+    const std::int32_t k = slot_[slot(w, p)];
+    return k < 0 ? at_rest_ : kept_[static_cast<std::size_t>(k)].state;
+  }
+  /// The history a force pass updates, or nullptr when ball p has never
+  /// touched wall w: the pass then starts it at rest and hands it to
+  /// keep_new_contact() if it touches.
+  ContactState *history_of(WallIndex w, Index p)
+  {
+    const std::int32_t k = slot_[slot(w, p)];
+    return k < 0 ? nullptr : &kept_[static_cast<std::size_t>(k)].state;
+  }
+  /// Force passes: open_pass() before (a list of new contacts for each of
+  /// `threads` threads), keep_new_contact() from the thread that owns ball
+  /// p, close_pass() after, which keeps them in (wall, ball) order.
+  void open_pass(int threads);
+  void keep_new_contact(WallIndex w, Index p, const ContactState &state);
+  void close_pass();
 
-  /// Whether ball p touched wall w at the last update: a byte per pair, so
-  /// the force pass can skip distant balls without reading their history.
-  bool engaged(WallIndex w, Index p) const { return engaged_[slot(w, p)] != 0; }
-  void set_engaged(WallIndex w, Index p, bool on) { engaged_[slot(w, p)] = on ? 1 : 0; }
+  /// The histories held, in increasing (wall, ball) order, and their
+  /// restoration (snapshots); a list naming a wall or ball out of range is
+  /// from another layout and restores none.
+  std::vector<WallContact> contacts() const;
+  void restore_history(const std::vector<WallContact> &contacts);
 
 private:
   static double cylinder_clearance(const Wall &c, const Vec3 &x);
   std::size_t slot(WallIndex w, Index p) const { return static_cast<std::size_t>(w) * stride_ + p; }
+  void index_kept();
   std::vector<Wall> walls_;
-  std::vector<ContactState> history_;
-  std::vector<std::uint8_t> engaged_;
+  std::vector<WallContact> kept_;              ///< the histories held, in no particular order
+  std::vector<std::int32_t> slot_;             ///< (wall, ball) wall-major: entry of kept_, or -1
+  std::vector<std::vector<WallContact>> new_;  ///< a force pass's new contacts, one list per thread
   std::size_t stride_ = 0;
+  ContactState at_rest_;
 };
 } // namespace dem

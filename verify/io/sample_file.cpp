@@ -371,12 +371,12 @@ void write_sample(const std::string &path, const SampleFile &sample)
   doc["contacts"] = {{"columns", contact_columns(law_fields, format_version)}, {"rows", contacts}};
 
   json wall_contacts = json::array();
-  for (std::size_t slot = 0; slot < s.wall_history.size(); ++slot)
+  for (const dem::WallContact &c : s.wall_contacts)
   {
-    const dem::ContactState &st = s.wall_history[slot];
+    const dem::ContactState &st = c.state;
     if (!st.touching && st.friction_work == 0 && st.shear_force.isZero(0))
       continue;
-    json row = json::array({static_cast<long>(slot / p.size()), static_cast<long>(slot % p.size())});
+    json row = json::array({static_cast<long>(c.wall), static_cast<long>(c.ball)});
     append_state(row, st);
     wall_contacts.push_back(row);
   }
@@ -522,7 +522,6 @@ SampleFile read_sample(const std::string &path)
       law.value[l] = v(law_at + l);
     s.law_states.push_back(law);
   }
-  s.wall_history.assign(static_cast<std::size_t>(n) * s.walls.size(), dem::ContactState{});
   const json &wall_contacts = f.table(doc, "wall_contacts", wall_contact_columns());
   for (std::size_t r = 0; r < wall_contacts.size(); ++r)
   {
@@ -530,7 +529,7 @@ SampleFile read_sample(const std::string &path)
     const long long w = f.integer(row[0], Fields::cell_key("wall_contacts", r, "wall"), 0, wall_count - 1,
                                   "a wall index");
     const long long b = f.integer(row[1], Fields::cell_key("wall_contacts", r, "ball"), 0, n - 1, "a ball index");
-    s.wall_history[static_cast<std::size_t>(w * n + b)] = f.state(row, 2, "wall_contacts", r);
+    s.wall_contacts.push_back({static_cast<dem::WallIndex>(w), static_cast<dem::Index>(b), f.state(row, 2, "wall_contacts", r)});
   }
 
   const json &clock = f.member(doc, "", "clock", "the clock (time, steps and the energy ledger)");
