@@ -28,21 +28,23 @@ Simulation::Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<C
 
 namespace
 {
-WallSet assemble_walls(const std::vector<Wall> &walls, Index particles, const std::vector<WallContact> &history)
+WallSet assemble_walls(const std::vector<Wall> &walls)
 {
   WallSet set;
   for (const Wall &w : walls)
     set.add(w);
-  set.resize_history(particles);
-  set.restore_history(history);
   return set;
 }
 } // namespace
 
 Simulation::Simulation(Snapshot snap, std::unique_ptr<ContactModel> model, SimulationSettings settings)
-  : Simulation(std::move(snap.particles), assemble_walls(snap.walls, snap.particles.size(), snap.wall_contacts),
-               std::move(model), settings)
+  : Simulation(std::move(snap.particles), assemble_walls(snap.walls), std::move(model), settings)
 {
+  // Restored here, not among the delegated constructor's arguments: those
+  // are evaluated in an unspecified order (clang moves snap.particles out
+  // before a later argument reads its size), while here the history is
+  // laid out for particles_.size() balls.
+  walls_.restore_history(snap.wall_contacts);
   std::vector<LawState> law_states;
   if (snap.contact_law == model_->name())
     law_states = std::move(snap.law_states);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 namespace dem
@@ -142,7 +144,9 @@ void WallSet::restore_history(const std::vector<WallContact> &contacts)
 {
   for (const WallContact &c : contacts)
     if (c.wall < 0 || c.wall >= size() || c.ball < 0 || static_cast<std::size_t>(c.ball) >= stride_)
-      return; // a snapshot from another layout: start without wall history
+      throw std::invalid_argument("a wall contact history names wall " + std::to_string(c.wall) + " and ball " +
+                                  std::to_string(c.ball) + ": expected one of " + std::to_string(size()) +
+                                  " walls and " + std::to_string(stride_) + " balls");
   for (const WallContact &c : contacts)
   {
     if (ContactState *kept = history_of(c.wall, c.ball))

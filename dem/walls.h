@@ -116,8 +116,8 @@ public:
   void close_pass();
 
   /// The histories held, in increasing (wall, ball) order, and their
-  /// restoration (snapshots); a list naming a wall or ball out of range is
-  /// from another layout and restores none.
+  /// restoration (snapshots), after resize_history(); a list naming a wall
+  /// or ball out of range throws std::invalid_argument.
   std::vector<WallContact> contacts() const;
   void restore_history(const std::vector<WallContact> &contacts);
 

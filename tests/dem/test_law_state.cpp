@@ -137,6 +137,10 @@ TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][la
     REQUIRE(snap.law_states.size() == snap.contacts.size());
     REQUIRE(non_rest_states(a.contacts()) > 50); // the elements are loaded: the test has teeth
     dem::Simulation b(snap, dem::make_contact_model(law, {}), {});
+    // The ball-wall histories come back too, whichever order a compiler
+    // evaluates the constructor's arguments in.
+    REQUIRE_FALSE(snap.wall_contacts.empty());
+    CHECK(b.snapshot().wall_contacts.size() == snap.wall_contacts.size());
     // The same snapshot with the elements at rest, as before law state was saved.
     dem::Snapshot rested = snap;
     rested.law_states.clear();
