@@ -215,6 +215,81 @@ TEST_CASE("the default thread count leaves out a core another task is running on
   CHECK(seen <= cores - 1);
 }
 
+TEST_CASE("the thread governor gives up a thread a busy machine holds back and keeps both on an idle one",
+          "[run][threads]")
+{
+  // A simulated machine of two cores: each step advances a simulated clock
+  // by the step's time at the governor's thread count.  Idle, two threads
+  // take 0.5 ms a step and one 1 ms; beside a busy process (from `busy_at`
+  // on) two take 3 ms, since they wait for the core the other process holds.
+  const int threads_before = omp_get_max_threads();
+  struct Machine
+  {
+    double clock = 0, busy_at = 1e9, fewer_seconds = 0;
+  };
+  const auto run = [](Machine &m, verify::ThreadGovernor &g, double until) {
+    while (m.clock < until)
+    {
+      const bool busy = m.clock >= m.busy_at;
+      const double step = g.threads() == 1 ? 1e-3 : (busy ? 3e-3 : 0.5e-3);
+      if (g.threads() == 1)
+        m.fewer_seconds += step;
+      m.clock += step;
+      g.after_step();
+    }
+  };
+  SECTION("idle: two threads stay, the trials of one cost under 1 % of the time")
+  {
+    Machine m;
+    verify::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
+    run(m, g, 600);
+    CHECK(g.threads() == 2);
+    CHECK(g.changes() == 0);
+    // Trials of 0.2 s every 2, 4, ... 32 s: about 22 in 600 s, 4.4 s.
+    CHECK(m.fewer_seconds > 0);
+    CHECK(m.fewer_seconds < 0.01 * 600);
+  }
+  SECTION("busy from the start: one thread after the first trial (at 2 s), and kept")
+  {
+    Machine m;
+    m.busy_at = 0;
+    verify::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
+    run(m, g, 3);
+    CHECK(g.threads() == 1);
+    run(m, g, 120);
+    CHECK(g.threads() == 1);
+    CHECK(g.changes() == 1);
+  }
+  SECTION("a load that arrives mid-run is met within the longest trial spacing")
+  {
+    Machine m;
+    m.busy_at = 300;
+    verify::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
+    run(m, g, 300);
+    CHECK(g.threads() == 2);
+    run(m, g, 300 + 32 + 1);
+    CHECK(g.threads() == 1);
+  }
+  SECTION("a run that started on one core because another was busy takes the second when it is free")
+  {
+    Machine m;
+    verify::ThreadGovernor g(1, 2, true, [&] { return m.clock; });
+    run(m, g, 3);
+    CHECK(g.threads() == 2);
+    CHECK(g.changes() == 1);
+  }
+  SECTION("a count the user fixed is never changed")
+  {
+    Machine m;
+    m.busy_at = 0;
+    verify::ThreadGovernor g(2, 2, false, [&] { return m.clock; });
+    run(m, g, 60);
+    CHECK(g.threads() == 2);
+    CHECK(g.changes() == 0);
+  }
+  omp_set_num_threads(threads_before);
+}
+
 TEST_CASE("a series on a full disk says so with the system's reason", "[run][output]")
 {
   // /dev/full takes no byte: every write fails with ENOSPC.

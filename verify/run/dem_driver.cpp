@@ -8,6 +8,8 @@
 #include "dem/stability.h"
 #include "dem/types.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -380,6 +382,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   const long steps_at_start = sim.steps();
   Progress progress(protocol.label(), options.progress, std::clamp(protocol.fraction_done(sim), 0.0, 1.0));
   StopSignals signals;
+  ThreadGovernor governor(omp_get_max_threads(), omp_get_num_procs(), threads_are_ours(options));
   const auto start = std::chrono::steady_clock::now();
   auto last_checkpoint = start;
   try
@@ -389,6 +392,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
       sim.step(cadence);
       if (cadence.last())
         break;
+      governor.after_step();
       if (signals.received())
       {
         status.interrupted_by = signals.received();
@@ -413,8 +417,9 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
         const double rate = double(sim.particles().size()) * double(sim.steps() - steps_at_start) / progress.elapsed();
         const double done = std::clamp(protocol.fraction_done(sim), 0.0, 1.0);
         char speed[96];
-        std::snprintf(speed, sizeof speed, "  step %ld of ~%.3g  %.3g particle-steps/s", sim.steps(),
-                      done > 0 ? double(sim.steps()) / done : double(sim.steps()), rate);
+        std::snprintf(speed, sizeof speed, "  step %ld of ~%.3g  %.3g particle-steps/s  %d thread%s", sim.steps(),
+                      done > 0 ? double(sim.steps()) / done : double(sim.steps()), rate, governor.threads(),
+                      governor.threads() == 1 ? "" : "s");
         progress.update(done, protocol.state_text(sim) + speed);
       }
     }

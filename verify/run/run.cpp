@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -199,12 +200,88 @@ int idle_cores()
   return std::clamp(cores - (runnable - 1), 1, cores);
 }
 
+bool threads_are_ours(const RunOptions &options) { return options.threads <= 0 && !std::getenv("OMP_NUM_THREADS"); }
+
 int apply_threads(const RunOptions &options)
 {
   if (options.threads > 0)
     omp_set_num_threads(options.threads);
-  else if (!std::getenv("OMP_NUM_THREADS"))
+  else if (threads_are_ours(options))
     omp_set_num_threads(idle_cores());
   return omp_get_max_threads();
+}
+
+ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<double()> now)
+  : now_(std::move(now)), most_(std::max(most, 1)), current_(std::clamp(start, 1, most_)),
+    active_(active && most_ > 1)
+{
+  if (!now_)
+    now_ = [start = std::chrono::steady_clock::now()] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+  begin_window();
+  next_trial_ = window_start_ + trial_spacing_;
+}
+
+void ThreadGovernor::begin_window()
+{
+  steps_ = 0;
+  window_start_ = now_();
+}
+
+void ThreadGovernor::use(int threads) { omp_set_num_threads(threads); }
+
+void ThreadGovernor::after_step()
+{
+  if (!active_ || ++steps_ < window_steps_)
+    return;
+  constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32;
+  const double end = now_();
+  const double per_step = std::max((end - window_start_) / double(steps_), 1e-9);
+  window_steps_ = std::clamp(long(window_seconds / per_step), 4L, 100000L);
+  switch (phase_)
+  {
+  case Phase::settled:
+    settled_per_step_ = per_step;
+    if (end >= next_trial_)
+    {
+      if (current_ == 1)
+        try_fewer_ = false;
+      else if (current_ == most_)
+        try_fewer_ = true;
+      trial_ = try_fewer_ ? current_ - 1 : current_ + 1;
+      use(trial_);
+      window_steps_ = std::max(4L, window_steps_ / 2); // 0.2 s even if the trial runs twice as slow
+      phase_ = Phase::trial;
+    }
+    break;
+  case Phase::trial:
+    trial_per_step_ = per_step;
+    use(current_);
+    window_steps_ = std::clamp(long(window_seconds / settled_per_step_), 4L, 100000L);
+    phase_ = Phase::confirm;
+    break;
+  case Phase::confirm:
+    // The trial against the better of the windows on either side of it, so
+    // that one window slowed by something else does not decide.
+    if (trial_per_step_ < (1 - gain) * std::min(settled_per_step_, per_step))
+    {
+      try_fewer_ = trial_ < current_;
+      current_ = trial_;
+      use(current_);
+      ++changes_;
+      trial_spacing_ = 2;
+    }
+    else
+    {
+      try_fewer_ = !try_fewer_;
+      trial_spacing_ = std::min(2 * trial_spacing_, longest_spacing);
+    }
+    settled_per_step_ = per_step;
+    next_trial_ = end + trial_spacing_;
+    phase_ = Phase::settled;
+    break;
+  }
+  begin_window();
 }
 } // namespace verify

@@ -146,4 +146,56 @@ int idle_cores();
 /// Sets and returns the OpenMP threads: options.threads, else
 /// OMP_NUM_THREADS when set, else idle_cores().
 int apply_threads(const RunOptions &options);
+
+/// Whether demvv chose the thread count (neither --threads nor
+/// OMP_NUM_THREADS), and so may change it while a run goes.
+bool threads_are_ours(const RunOptions &options);
+
+/// The thread count of a DEM run while it goes.  idle_cores() sees the load
+/// at the start only; a process that starts later holds back every step of
+/// a run whose threads wait for one another (two threads beside one busy
+/// process ran slower than one).  Results do not depend on the thread count,
+/// so the count may change between any two steps: every so often the
+/// governor times a window of steps on one thread fewer (or, after one was
+/// given up, one more) and keeps that count if it ran faster by 10 % than
+/// the better of the windows just before and just after it (one window
+/// slowed by something else does not decide).  A window lasts about 0.2 s
+/// of wall time (a trial's half the steps, in case it runs twice as slow);
+/// after a trial that changed nothing the next comes twice as late (2 s at
+/// first, at most 32 s), so on an idle machine trials cost well under 1 %.
+class ThreadGovernor
+{
+public:
+  /// `start`: the threads the run starts with; `most`: never exceeded (the
+  /// cores); `active`: whether the count may change (threads_are_ours());
+  /// `now`: a clock in seconds (steady_clock when empty; tests pass theirs).
+  ThreadGovernor(int start, int most, bool active, std::function<double()> now = {});
+  /// Called after every step.
+  void after_step();
+  int threads() const { return phase_ == Phase::trial ? trial_ : current_; }
+  /// How often the count changed so far.
+  int changes() const { return changes_; }
+
+private:
+  enum class Phase
+  {
+    settled, ///< running at current_
+    trial,   ///< running at trial_
+    confirm, ///< back at current_, the window that decides
+  };
+  void begin_window();
+  void use(int threads);
+  Phase phase_ = Phase::settled;
+  double trial_per_step_ = 0; ///< s, at trial_
+  std::function<double()> now_;
+  int most_, current_, trial_ = 0, changes_ = 0;
+  bool active_;
+  bool try_fewer_ = true;       ///< the direction of the next trial
+  long window_steps_ = 16;      ///< steps in a window, fitted to about 0.2 s
+  long steps_ = 0;              ///< steps taken in this window
+  double window_start_ = 0;     ///< s
+  double settled_per_step_ = 0; ///< s, at current_ in the last window
+  double next_trial_ = 0;       ///< s, when the next trial begins
+  double trial_spacing_ = 2;    ///< s
+};
 } // namespace verify
