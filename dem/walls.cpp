@@ -10,6 +10,14 @@
 
 namespace dem
 {
+namespace
+{
+bool wall_then_ball(const WallContact &a, const WallContact &b)
+{
+  return std::tie(a.wall, a.ball) < std::tie(b.wall, b.ball);
+}
+} // namespace
+
 WallIndex WallSet::add(Wall w)
 {
   w.direction.normalize();
@@ -123,20 +131,15 @@ void WallSet::close_pass()
   for (const std::vector<WallContact> &list : new_)
     kept_.insert(kept_.end(), list.begin(), list.end());
   // The order of the lists depends on the threads; the order kept does not.
-  std::sort(kept_.begin() + static_cast<std::ptrdiff_t>(first), kept_.end(),
-            [](const WallContact &a, const WallContact &b) { return std::tie(a.wall, a.ball) < std::tie(b.wall, b.ball); });
+  std::sort(kept_.begin() + static_cast<std::ptrdiff_t>(first), kept_.end(), wall_then_ball);
   for (std::size_t k = first; k < kept_.size(); ++k)
     slot_[slot(kept_[k].wall, kept_[k].ball)] = static_cast<std::int32_t>(k);
 }
 
 std::vector<WallContact> WallSet::contacts() const
 {
-  std::vector<WallContact> out;
-  out.reserve(kept_.size());
-  for (WallIndex w = 0; w < size(); ++w)
-    for (Index p = 0; p < static_cast<Index>(stride_); ++p)
-      if (slot_[slot(w, p)] >= 0)
-        out.push_back({w, p, state(w, p)});
+  std::vector<WallContact> out = kept_;
+  std::sort(out.begin(), out.end(), wall_then_ball);
   return out;
 }
 
