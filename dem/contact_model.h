@@ -118,7 +118,7 @@ public:
     const ParticleStore &p = balls.particles;
     Contact *const contacts = table.entries().data();
     LawState *const states = table.law_states().data();
-    const std::vector<std::size_t> &second_list = table.second_list();
+    const std::vector<EntryIndex> &second_list = table.second_list();
     loads_.resize(table.size());
     PairLoad *const loads = loads_.data();
     const auto pairs = static_cast<std::ptrdiff_t>(table.size());

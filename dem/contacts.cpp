@@ -1,6 +1,7 @@
 #include "dem/contacts.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -20,51 +21,69 @@ void ContactTable::retire(const Contact &c)
 
 void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles)
 {
-  scratch_.clear();
-  scratch_states_.clear();
+  // In place, so that a rebuild holds no second copy of the table: a
+  // forward walk keeps the entries that are candidates, touching or bonded
+  // (moved down over the retired ones, which retire in increasing order)
+  // and counts the new candidates; a backward walk over the kept entries and
+  // the candidates then places every entry at its final index, writing
+  // behind what it has still to read.
   const auto key = [](const Contact &c) { return Pair{c.first, c.second}; };
-  std::size_t old = 0;
-  const auto keep_old = [&](std::size_t k) {
-    scratch_.push_back(contacts_[k]);
+  std::size_t kept = 0, fresh = 0, old = 0;
+  const auto keep = [&](std::size_t k) {
+    contacts_[kept] = contacts_[k];
     if (law_slots_)
-      scratch_states_.push_back(law_states_[k]);
+      law_states_[kept] = law_states_[k];
+    ++kept;
   };
-  for (const Pair &pair : candidates)
-  {
-    while (old < contacts_.size() && key(contacts_[old]) < pair)
+  const auto keep_or_retire_below = [&](const Pair *bound) {
+    for (; old < contacts_.size() && (!bound || key(contacts_[old]) < *bound); ++old)
     {
       const Contact &c = contacts_[old];
       if (c.bond.intact || c.state.touching)
-        keep_old(old);
+        keep(old);
       else
         retire(c);
-      ++old;
     }
-    if (old < contacts_.size() && key(contacts_[old]) == pair)
-    {
-      keep_old(old);
-      ++old;
-    }
-    else
-    {
-      Contact c;
-      c.first = pair.first;
-      c.second = pair.second;
-      c.params = pair_params(particles, pair.first, pair.second);
-      scratch_.push_back(c);
-      if (law_slots_)
-        scratch_states_.emplace_back();
-    }
-  }
-  for (; old < contacts_.size(); ++old)
+  };
+  for (const Pair &pair : candidates)
   {
-    if (contacts_[old].bond.intact || contacts_[old].state.touching)
-      keep_old(old);
+    keep_or_retire_below(&pair);
+    if (old < contacts_.size() && key(contacts_[old]) == pair)
+      keep(old++);
     else
-      retire(contacts_[old]);
+      ++fresh;
   }
-  contacts_.swap(scratch_);
-  law_states_.swap(scratch_states_);
+  keep_or_retire_below(nullptr);
+
+  contacts_.resize(kept + fresh);
+  if (law_slots_)
+    law_states_.resize(kept + fresh);
+  std::size_t next = kept + fresh, k = kept, c = candidates.size();
+  while (next > 0)
+  {
+    --next;
+    const bool from_kept = k > 0 && (c == 0 || !(key(contacts_[k - 1]) < candidates[c - 1]));
+    if (from_kept)
+    {
+      --k;
+      if (c > 0 && key(contacts_[k]) == candidates[c - 1])
+        --c;
+      contacts_[next] = contacts_[k];
+      if (law_slots_)
+        law_states_[next] = law_states_[k];
+    }
+    else
+    {
+      --c;
+      Contact entry;
+      entry.first = candidates[c].first;
+      entry.second = candidates[c].second;
+      entry.params = pair_params(particles, entry.first, entry.second);
+      contacts_[next] = entry;
+      if (law_slots_)
+        law_states_[next] = LawState{};
+    }
+  }
   rebuild_adjacency(particles.size());
   changed_ = true;
 }
@@ -112,7 +131,6 @@ void ContactTable::keeps_law_states(bool keep)
   law_slots_ = keep;
   law_states_.assign(keep ? contacts_.size() : 0, LawState{});
   law_states_.shrink_to_fit();
-  scratch_states_ = {};
 }
 
 const Contact *ContactTable::find(Index i, Index j) const
@@ -132,6 +150,9 @@ Contact *ContactTable::find(Index i, Index j)
 
 void ContactTable::rebuild_adjacency(Index particles)
 {
+  if (contacts_.size() >= std::numeric_limits<EntryIndex>::max())
+    throw std::length_error("contact table: " + std::to_string(contacts_.size()) +
+                            " entries, more than its adjacency lists can index (2^32 - 1)");
   first_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   second_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   for (const Contact &c : contacts_)
@@ -145,11 +166,13 @@ void ContactTable::rebuild_adjacency(Index particles)
     second_start_[p + 1] += second_start_[p];
   }
   // Contacts of a second ball in increasing contact order: a fixed gather
-  // order, hence the same sums whatever the thread count.
+  // order, hence the same sums whatever the thread count.  The fill counts
+  // of each second ball borrow its start, restored by one shift afterwards.
   second_list_.resize(contacts_.size());
-  std::vector<std::size_t> &fill = scratch_positions_;
-  fill.assign(second_start_.begin(), second_start_.end() - 1);
   for (std::size_t c = 0; c < contacts_.size(); ++c)
-    second_list_[fill[contacts_[c].second]++] = c;
+    second_list_[second_start_[contacts_[c].second]++] = static_cast<EntryIndex>(c);
+  for (Index p = particles; p > 0; --p)
+    second_start_[p] = second_start_[p - 1];
+  second_start_[0] = 0;
 }
 } // namespace dem

@@ -7,8 +7,8 @@
 // in a second array, parallel to the entries: structure of arrays, so that a
 // law without such history (the linear law) never loads it in its contact
 // pass.  When the neighbour list is rebuilt the table merges the new
-// candidates with the old entries by one linear walk over two sorted lists,
-// carrying both arrays: history survives rebuilds without hashing, a new
+// candidates with the old entries in place, by linear walks over two sorted
+// lists, carrying both arrays: history survives rebuilds without hashing, a new
 // pair starts with its law state at rest, and a bonded pair stays in the
 // table however far its balls drift apart.
 //
@@ -23,6 +23,7 @@
 #include "dem/contact.h"
 #include "dem/neighbors.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace dem
@@ -52,6 +53,10 @@ struct RetiredContactEnergy
   double friction_work = 0; ///< J
   double bond_energy = 0;   ///< J
 };
+
+/// Index of a table entry in the adjacency lists: four bytes, so a table
+/// holds at most 2^32 - 1 entries (a rebuild beyond that throws).
+using EntryIndex = std::uint32_t;
 
 class ContactTable
 {
@@ -102,7 +107,7 @@ public:
   std::size_t first_begin(Index p) const { return first_start_[p]; }
   /// Contacts where p is the second ball: second_list()[second_begin(p) ...].
   std::size_t second_begin(Index p) const { return second_start_[p]; }
-  const std::vector<std::size_t> &second_list() const { return second_list_; }
+  const std::vector<EntryIndex> &second_list() const { return second_list_; }
 
   const RetiredContactEnergy &retired() const { return retired_; }
 
@@ -119,9 +124,9 @@ private:
   void rebuild_adjacency(Index particles);
   void retire(const Contact &c);
 
-  std::vector<Contact> contacts_, scratch_;
-  std::vector<LawState> law_states_, scratch_states_;
-  std::vector<std::size_t> first_start_, second_start_, second_list_, scratch_positions_;
+  std::vector<Contact> contacts_;
+  std::vector<LawState> law_states_;
+  std::vector<EntryIndex> first_start_, second_start_, second_list_;
   RetiredContactEnergy retired_;
   bool changed_ = false;
   bool law_slots_ = true;

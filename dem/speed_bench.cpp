@@ -61,6 +61,7 @@ BenchTiming time_compression(Simulation &sim, WallIndex bottom, WallIndex top, d
   UniaxialCompression test(sim, bottom, top, area, load);
 
   const long warmup = std::min<long>(200, steps);
+  sim.invalidate_neighbors();
   for (long k = 0; k < warmup; ++k)
     sim.step(test);
   BenchTiming out;

@@ -9,7 +9,9 @@
 // platen moves down at 0.01 m/s (uniaxial compression, protocol_uniaxial.h),
 // and after a warm-up of up to 200 steps a fixed number of steps is timed
 // `repeat` times; the fastest timing is kept, the least disturbed measure of
-// what the code can do on a shared machine.  Both `demvv bench` and the
+// what the code can do on a shared machine.  The warm-up rebuilds the
+// neighbour list and contact table once, as every real run does many times,
+// so that the peak memory includes what a rebuild holds.  Both `demvv bench` and the
 // DEM-only `demvv_dem_bench` run it, so their figures are comparable.
 #pragma once
 

@@ -10,6 +10,9 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <map>
+#include <random>
 #include <string>
 
 using namespace demtest;
@@ -115,6 +118,98 @@ TEST_CASE("table rebuilds carry each contact's law state, a new pair starts at r
   t.assign(entries, {}, p, {});
   CHECK(t.law_states() == std::vector<dem::LawState>(2));
   CHECK_THROWS_AS(t.assign(entries, {element(1.0)}, p, {}), std::invalid_argument);
+}
+
+TEST_CASE("an in-place rebuild gives the table a plain merge into a new one gives", "[dem][law_state][contacts]")
+{
+  // The reference is the obvious merge: keep every old entry that is a
+  // candidate, touching or bonded, add every new candidate at rest, retire
+  // the rest in increasing order.  Random tables over 40 balls and random
+  // candidate lists, so that new pairs land before, between and after the
+  // kept ones; the result must be equal entry for entry and to the bit
+  // (retired energies included), with the adjacency lists that go with it.
+  dem::ParticleStore p;
+  for (int k = 0; k < 40; ++k)
+    p.add(ball(Vec3(2e-3 * k, 0, 0), 1e-3, 1e6 * (1 + k % 3)));
+  std::mt19937 random(7);
+  const auto random_pairs = [&](double share) {
+    std::vector<dem::Pair> pairs;
+    std::bernoulli_distribution take(share);
+    for (dem::Index i = 0; i < 40; ++i)
+      for (dem::Index j = i + 1; j < 40; ++j)
+        if (take(random))
+          pairs.emplace_back(i, j);
+    return pairs;
+  };
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int round = 0; round < 50; ++round)
+  {
+    dem::ContactTable t;
+    t.rebuild(random_pairs(0.1 + 0.2 * (round % 3)), p);
+    for (std::size_t c = 0; c < t.size(); ++c)
+    {
+      t[c].state.touching = unit(random) < 0.3;
+      t[c].bond.intact = unit(random) < 0.2;
+      t[c].state.friction_work = unit(random);
+      t[c].state.bond_energy = unit(random);
+      t.law_states()[c] = element(unit(random));
+    }
+    const std::vector<dem::Pair> candidates = random_pairs(0.05 + 0.1 * (round % 4));
+
+    std::map<dem::Pair, std::pair<dem::Contact, dem::LawState>> expected;
+    dem::RetiredContactEnergy retired;
+    for (std::size_t c = 0; c < t.size(); ++c)
+    {
+      const dem::Contact &k = t[c];
+      const dem::Pair key{k.first, k.second};
+      if (k.state.touching || k.bond.intact || std::binary_search(candidates.begin(), candidates.end(), key))
+        expected[key] = {k, t.law_states()[c]};
+      else
+      {
+        retired.friction_work += k.state.friction_work;
+        retired.bond_energy += k.state.bond_energy;
+      }
+    }
+    for (const dem::Pair &pair : candidates)
+      if (expected.count(pair) == 0)
+      {
+        dem::Contact k;
+        k.first = pair.first;
+        k.second = pair.second;
+        k.params = dem::ContactTable::pair_params(p, pair.first, pair.second);
+        expected[pair] = {k, dem::LawState{}};
+      }
+
+    t.rebuild(candidates, p);
+    REQUIRE(t.size() == expected.size());
+    REQUIRE(t.law_states().size() == expected.size());
+    std::size_t c = 0;
+    for (const auto &[key, entry] : expected)
+    {
+      const dem::Contact &k = t[c];
+      CHECK((k.first == key.first && k.second == key.second));
+      CHECK(k.params.kn == entry.first.params.kn);
+      CHECK(k.state.touching == entry.first.state.touching);
+      CHECK(k.bond.intact == entry.first.bond.intact);
+      CHECK(k.state.friction_work == entry.first.state.friction_work);
+      CHECK(t.law_states()[c] == entry.second);
+      ++c;
+    }
+    CHECK(t.retired().friction_work == retired.friction_work);
+    CHECK(t.retired().bond_energy == retired.bond_energy);
+    for (dem::Index b = 0; b < 40; ++b)
+    {
+      for (std::size_t k = t.first_begin(b); k < t.first_begin(b + 1); ++k)
+        CHECK(t[k].first == b);
+      std::vector<std::size_t> seconds;
+      for (std::size_t k = 0; k < t.size(); ++k)
+        if (t[k].second == b)
+          seconds.push_back(k);
+      const std::vector<std::size_t> listed(t.second_list().begin() + t.second_begin(b),
+                                            t.second_list().begin() + t.second_begin(b + 1));
+      CHECK(listed == seconds);
+    }
+  }
 }
 
 TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][law_state][snapshot]")
