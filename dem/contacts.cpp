@@ -150,7 +150,7 @@ Contact *ContactTable::find(Index i, Index j)
 
 void ContactTable::rebuild_adjacency(Index particles)
 {
-  if (contacts_.size() >= std::numeric_limits<EntryIndex>::max())
+  if (contacts_.size() > std::numeric_limits<EntryIndex>::max())
     throw std::length_error("contact table: " + std::to_string(contacts_.size()) +
                             " entries, more than its adjacency lists can index (2^32 - 1)");
   first_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
