@@ -114,10 +114,10 @@ if [ -n "$mpirun" ]; then
   cylinder >/dev/null 2>"$work/err"
   code=$?
   [ $code -eq 2 ] || fail "MPI: a non-empty directory ended with $code, expected 2 on every rank (124: a rank hung)"
-  [ "$(grep -c "is not empty" "$work/err")" -eq 2 ] || fail "MPI: not both ranks refused: $(cat "$work/err")"
+  [ "$(grep -o "is not empty" "$work/err" | wc -l)" -eq 2 ] || fail "MPI: not both ranks refused: $(cat "$work/err")"
   cylinder --replace --set "measurement/fit window=0.5,0.1" >/dev/null 2>"$work/err"
   code=$?
-  [ $code -eq 2 ] && [ "$(grep -c "fit window" "$work/err")" -eq 2 ] ||
+  [ $code -eq 2 ] && [ "$(grep -o "fit window" "$work/err" | wc -l)" -eq 2 ] ||
     fail "MPI: a check failed on rank 0 ended with $code: $(cat "$work/err")"
   [ -f "$work/mpi/stray.txt" ] || fail "MPI: a failed --replace removed the old files"
   cylinder --replace >/dev/null 2>&1 || fail "MPI: the run with --replace failed"

@@ -29,6 +29,18 @@
 #include <iostream>
 #include <new>
 #include <stdexcept>
+#include <string>
+
+namespace
+{
+/// Writes "demvv: WHY" to stderr in one piece, so that the lines of several
+/// MPI ranks refusing at once never run into each other, and returns `code`.
+int refuse(const std::string &why, int code)
+{
+  std::cerr << "demvv: " + why + "\n";
+  return code;
+}
+} // namespace
 
 int main(int argc, char **argv)
 {
@@ -182,8 +194,7 @@ int main(int argc, char **argv)
   }
   catch (const CLI::ParseError &e)
   {
-    std::cerr << "demvv: " << e.what() << " (see demvv --help)\n";
-    return 2;
+    return refuse(std::string(e.what()) + " (see demvv --help)", 2);
   }
 
   try
@@ -232,29 +243,25 @@ int main(int argc, char **argv)
   }
   catch (const verify::DeckError &e)
   {
-    std::cerr << "demvv: " << e.what() << "\n";
-    return 2;
+    return refuse(e.what(), 2);
   }
   catch (const verify::OutputError &e)
   {
-    std::cerr << "demvv: " << e.what() << "; every row and file written before is complete\n";
-    return 4;
+    return refuse(std::string(e.what()) + "; every row and file written before is complete", 4);
   }
   catch (const std::runtime_error &e)
   {
-    std::cerr << "demvv: " << e.what() << "\n";
-    return 2;
+    return refuse(e.what(), 2);
   }
   catch (const std::bad_alloc &)
   {
-    std::cerr << "demvv: out of memory: the input needs more memory than this machine has: expected fewer balls "
-                 "or a smaller input\n";
-    return 2;
+    return refuse("out of memory: the input needs more memory than this machine has: expected fewer balls or a "
+                  "smaller input",
+                  2);
   }
   catch (const std::length_error &e)
   {
-    std::cerr << "demvv: out of memory (" << e.what() << "): expected fewer balls or a smaller input\n";
-    return 2;
+    return refuse("out of memory (" + std::string(e.what()) + "): expected fewer balls or a smaller input", 2);
   }
   return 0;
 }
