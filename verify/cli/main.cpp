@@ -255,9 +255,10 @@ int main(int argc, char **argv)
   }
   catch (const std::bad_alloc &)
   {
-    return refuse("out of memory: the input needs more memory than this machine has: expected fewer balls or a "
-                  "smaller input",
-                  2);
+    // One literal, one write, nothing allocated.
+    std::cerr << "demvv: out of memory: the input needs more memory than this machine has: expected fewer balls "
+                 "or a smaller input\n";
+    return 2;
   }
   catch (const std::length_error &e)
   {
