@@ -136,9 +136,10 @@ double estimated_memory_bytes(double particles, int walls)
   const double ball = 5 * sizeof(Vec3) + 12 * sizeof(double) + 1 // ParticleStore
                       + 2 * sizeof(double) + sizeof(BallEnergy)   // step scratch, energy ledger
                       + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
-                      + 2 * sizeof(std::size_t)                  // contact table adjacency
+                      + 2 * sizeof(EntryIndex)                   // contact table adjacency
                       + double(walls) * sizeof(std::int32_t) + sizeof(WallContact);
-  const double pair = sizeof(Pair) + 2 * sizeof(Contact) + 2 * sizeof(LawState) + 2 * sizeof(std::size_t);
+  constexpr double load_record = 10 * sizeof(double); // the force pass's loads of a pair (contact_model.h)
+  const double pair = sizeof(Pair) + sizeof(Contact) + sizeof(LawState) + sizeof(EntryIndex) + load_record;
   return 1.5 * particles * (ball + pairs_per_ball * pair);
 }
 

@@ -108,14 +108,13 @@ class Simulation;
 /// estimated from the engine's own arrays: the ball arrays and per-ball
 /// scratch, the wall histories (an index entry per wall and ball, and a
 /// history per ball: a layer of balls on a floor has one each), the cell
-/// list, and for each neighbour pair its candidate, contact entry and law
-/// state (with the table's merge scratch).  A dense packing
-/// with the default skin has about 7 candidate pairs per ball; 8 are
-/// counted, and half again for vector growth and the heap, so the estimate
-/// errs high: 6.2 kB per ball with three walls, against 3.3 kB measured
-/// (peak resident memory, less the executable's own, of a 200000-ball fcc
-/// bench, before the force pass's loads went from 104 to 80 bytes per pair
-/// and the linear law's empty law state from 48 to none).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
+/// list, and for each neighbour pair its candidate, contact entry, law
+/// state, adjacency index and load record (the table is rebuilt in place:
+/// no second copy).  A dense packing with the default skin has about 7
+/// candidate pairs per ball; 8 are counted, and half again for vector
+/// growth and the heap, so the estimate errs high: 4.4 kB per ball with
+/// three walls, against 1.1-1.4 kB measured on the sc lattice bench (peak
+/// resident memory, one rebuild, BENCHMARKS.md).  Doubles, so that absurd counts (1e13 balls) do not overflow: it
 /// serves to refuse a run that cannot fit before allocating.
 double estimated_memory_bytes(double particles, int walls);
 
