@@ -57,7 +57,7 @@ struct BallForces
     for (const WallIndex w : active_walls)
     {
       ContactState *kept = walls.history_of(w, p);
-      if (walls.clearance(w, P.position[p]) >= P.radius[p] && !(kept && kept->touching))
+      if (walls.clearance(w, P.position[p]) >= P.radius[p] && !(kept && kept->touching()))
         continue;
       ContactState fresh; // a ball that never touched this wall starts at rest
       ContactState &state = kept ? *kept : fresh;
@@ -65,9 +65,10 @@ struct BallForces
       const WallProps &wp = walls[w].props;
       const ContactParams params{in_series(P.kn[p], wp.kn), in_series(P.ks[p], wp.ks),
                                  std::min(P.friction[p], wp.friction)};
-      ContactBond no_bond;
+      bool unbonded = false;
+      const ContactBond no_bond;
       LinearLaw::History none;
-      const ResolvedContact r = resolve_contact(LinearLaw{}, params, no_bond, state, none, g, dt);
+      const ResolvedContact r = resolve_contact(LinearLaw{}, params, unbonded, no_bond, state, none, g, dt);
       if (!r.touching)
         continue;
       if (!kept)

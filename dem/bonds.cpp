@@ -50,7 +50,7 @@ BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particl
       s.touch_tolerance * std::min(particles.radius[k.first], particles.radius[k.second]);
     if (gap > tolerance)
       continue;
-    k.bond.intact = true;
+    k.bonded = true;
     k.bond.normal_strength = draw(s.normal_strength);
     k.bond.shear_strength = draw(s.shear_strength);
     bonded.push_back(c);
@@ -64,7 +64,7 @@ BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particl
     {
       const std::size_t pick = k + gsl_rng_uniform_int(random.rng.get(), bonded.size() - k);
       std::swap(bonded[k], bonded[pick]);
-      table[bonded[k]].bond = ContactBond{};
+      table[bonded[k]].unbond();
     }
     report.removed = to_remove;
   }
@@ -86,7 +86,7 @@ void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Ind
                double normal_strength, double shear_strength)
 {
   Contact &c = table.ensure(i, j, particles);
-  c.bond.intact = true;
+  c.bonded = true;
   c.bond.normal_strength = normal_strength;
   c.bond.shear_strength = shear_strength;
 }
@@ -94,7 +94,7 @@ void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Ind
 void scale_bond_strengths(ContactTable &table, double factor)
 {
   for (Contact &c : table.entries())
-    if (c.bond.intact)
+    if (c.bonded)
     {
       c.bond.normal_strength *= factor;
       c.bond.shear_strength *= factor;
@@ -104,7 +104,7 @@ void scale_bond_strengths(ContactTable &table, double factor)
 void set_break_displacement(ContactTable &table, const ParticleStore &particles, double delta_c)
 {
   for (Contact &c : table.entries())
-    if (c.bond.intact)
+    if (c.bonded)
       c.bond.break_distance = (particles.position[c.second] - particles.position[c.first]).norm() + delta_c;
 }
 } // namespace dem

@@ -43,10 +43,11 @@ inline double in_series(double a, double b)
   return (a > 0 && b > 0) ? a * b / (a + b) : 0.0;
 }
 
-/// PFC3D contact bond (thesis §3.4.2): strengths are forces.
+/// PFC3D contact bond (thesis §3.4.2): strengths are forces.  Whether a
+/// contact's bond holds is a flag of the contact (`bonded`, contacts.h),
+/// kept beside the pair's other small fields where it costs no padding.
 struct ContactBond
 {
-  bool intact = false;
   double normal_strength = 0; ///< N, tensile strength phi_n
   double shear_strength = 0;  ///< N, shear strength phi_s
   double break_distance = std::numeric_limits<double>::infinity(); ///< m, centre distance that breaks it (appendix A)
@@ -74,12 +75,16 @@ struct BreakForces
 struct ContactState
 {
   Vec3 shear_force = Vec3::Zero(); ///< N, F_s on the second entity
-  Vec3 normal = Vec3::Zero();      ///< unit normal at the last update (zero: new contact)
+  Vec3 normal = Vec3::Zero();      ///< unit normal at the last update if it carried a force, else zero
   double normal_force = 0;         ///< N, F_n (compression positive)
   double overlap = 0;              ///< m, U at the last update
   double friction_work = 0;        ///< J, energy dissipated by Coulomb slip so far
   double bond_energy = 0;          ///< J, elastic energy released by the bond's break
-  bool touching = false;           ///< carried a force at the last update
+
+  /// Whether the contact carried a force at the last update: its normal is
+  /// then a unit vector, never zero, so no flag (eight bytes with padding,
+  /// in every contact entry) is needed.
+  bool touching() const { return normal.x() != 0 || normal.y() != 0 || normal.z() != 0; }
 };
 
 /// A contact law's own history of one contact, beyond ContactState: a fixed

@@ -59,15 +59,20 @@ public:
   /// row bound [1/s^2].
   virtual double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) = 0;
 
+  /// Frees the force pass's per-contact scratch (the next pass makes it
+  /// anew), so that a neighbour rebuild never holds it beside its own.
+  virtual void release_scratch() = 0;
+
   /// Whether the law keeps history of its own in the table's LawState slots.
   virtual bool keeps_law_state() const = 0;
 
   /// Elastic energy stored in all ball-ball contacts [J].
   virtual double stored_energy(const ContactTable &table) const = 0;
 
-  /// Tangent normal and shear stiffness of a contact [N/m] (kn, ks of the
-  /// result; friction unused), as the stability bound sees them.
-  virtual ContactParams tangent_stiffness(const Contact &c) const = 0;
+  /// Tangent normal and shear stiffness of a contact with these pair
+  /// constants [N/m] (kn, ks of the result; friction unused), as the
+  /// stability bound sees them.
+  virtual ContactParams tangent_stiffness(const ContactParams &pair) const = 0;
 
   /// Recomputes every contact's compressive stability terms (after the
   /// table or the balls' masses changed).
@@ -75,7 +80,7 @@ public:
   {
     for (Contact &c : table.entries())
     {
-      const ContactParams k = tangent_stiffness(c);
+      const ContactParams k = tangent_stiffness(table.params(c));
       c.stability = contact_stability_terms(p, c.first, c.second, k.kn, k.ks, 1.0, 1.0);
     }
   }
@@ -108,7 +113,7 @@ public:
 
   // The pass is one parallel region of two loops.  The first resolves
   // every contact (each by one thread, each writing only its own entries)
-  // and leaves its loads on both balls in an 80-byte record; after the
+  // and leaves its loads on both balls in a 72-byte record; after the
   // barrier, the second sums each ball's records, first the contacts where
   // it is first, then those where it is second (via the table's second
   // list), then its walls (ball_forces.h).  The sums keep that order, so
@@ -117,6 +122,7 @@ public:
   {
     const ParticleStore &p = balls.particles;
     Contact *const contacts = table.entries().data();
+    const ContactParams *const constants = table.distinct_params().data();
     LawState *const states = table.law_states().data();
     const std::vector<EntryIndex> &second_list = table.second_list();
     loads_.resize(table.size());
@@ -133,7 +139,8 @@ public:
       broken.clear();
 #pragma omp for schedule(static)
       for (std::ptrdiff_t c = 0; c < pairs; ++c)
-        loads[c] = resolve_pair(p, contacts[c], states, static_cast<std::size_t>(c), dt, broken);
+        loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, static_cast<std::size_t>(c),
+                                dt, broken);
 #pragma omp for schedule(static)
       for (Index b = 0; b < n; ++b)
       {
@@ -144,10 +151,11 @@ public:
         for (std::size_t c = table.first_begin(b); c < end; ++c)
         {
           const PairLoad &load = loads[c];
+          const double arm = p.radius[b] - 0.5 * load.overlap;
           for (int d = 0; d < 3; ++d)
           {
             f[d] -= load.force[d];
-            t[d] -= load.arm_first * load.lever[d];
+            t[d] -= arm * load.lever[d];
           }
           bound += load.bound_first;
         }
@@ -155,10 +163,11 @@ public:
         for (std::size_t k = table.second_begin(b); k < last; ++k)
         {
           const PairLoad &load = loads[second_list[k]];
+          const double arm = p.radius[b] - 0.5 * load.overlap;
           for (int d = 0; d < 3; ++d)
           {
             f[d] += load.force[d];
-            t[d] -= load.arm_second * load.lever[d];
+            t[d] -= arm * load.lever[d];
           }
           bound += load.bound_second;
         }
@@ -172,6 +181,8 @@ public:
     return largest;
   }
 
+  void release_scratch() override { std::vector<PairLoad>().swap(loads_); }
+
   bool keeps_law_state() const override { return stateful; }
 
   double stored_energy(const ContactTable &table) const override
@@ -180,36 +191,38 @@ public:
     for (std::size_t c = 0; c < table.size(); ++c)
     {
       const ContactState &s = table[c].state;
-      if (s.touching)
-        e += law_.stored_energy(table[c].params, s.normal_force, s.shear_force, history_of(table.law_states(), c));
+      if (s.touching())
+        e += law_.stored_energy(table.params(table[c]), s.normal_force, s.shear_force, history_of(table.law_states(), c));
     }
     return e;
   }
 
-  ContactParams tangent_stiffness(const Contact &c) const override
+  ContactParams tangent_stiffness(const ContactParams &pair) const override
   {
-    return {law_.normal_stiffness(c.params), law_.shear_stiffness(c.params), 0};
+    return {law_.normal_stiffness(pair), law_.shear_stiffness(pair), 0};
   }
 
 private:
   /// What a contact gives its two balls at this step: the force F on the
-  /// second [N] (the first gets -F), the torques' lever n x F_s [N] and
-  /// arms [m] (T = -arm lever), and the stability row terms [1/s^2]; all
-  /// zero when the contact carries none.
+  /// second [N] (the first gets -F), the torques' lever n x F_s [N], the
+  /// overlap U [m] that gives each ball its arm R - U/2 (T = -arm lever,
+  /// the arm computed as the geometry computes it, so to the bit), and the
+  /// stability row terms [1/s^2]; all zero when the contact carries none.
   struct PairLoad
   {
     double force[3];
     double lever[3];
-    double arm_first, arm_second;
+    double overlap;
     double bound_first, bound_second;
   };
 
-  /// Resolves contact c at this step and returns its loads.
-  DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, LawState *states, std::size_t c,
-                                       double dt, std::vector<BrokenBond> &broken)
+  /// Resolves contact c (entry k, pair constants `pair`) at this step and
+  /// returns its loads.
+  DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, const ContactParams &pair, LawState *states,
+                                       std::size_t c, double dt, std::vector<BrokenBond> &broken)
   {
     const Index i = k.first, j = k.second;
-    if (!k.bond.intact && !k.state.touching)
+    if (!k.bonded && !k.state.touching())
     {
       // Fast exit for candidates that are not touching.
       const double reach = p.radius[i] + p.radius[j];
@@ -220,7 +233,7 @@ private:
     typename Law::History history{};
     if constexpr (stateful)
       history = Law::load(states[c]);
-    const ResolvedContact r = resolve_contact(law_, k.params, k.bond, k.state, history, g, dt);
+    const ResolvedContact r = resolve_contact(law_, pair, k.bonded, k.bond, k.state, history, g, dt);
     if constexpr (stateful)
       Law::store(history, states[c]);
     if (r.broke != BreakMode::none)
@@ -230,22 +243,21 @@ private:
     const Vec3 lever = cross(g.normal, r.shear);
     // In compression the arms are at most the radii and the precomputed
     // terms hold; a bonded pair in tension has longer arms.
-    const StabilityTerms terms = g.overlap < 0 ? tension_terms(p, k) : k.stability;
+    const StabilityTerms terms = g.overlap < 0 ? tension_terms(p, k, pair) : k.stability;
     return {{r.force.x(), r.force.y(), r.force.z()},
             {lever.x(), lever.y(), lever.z()},
-            g.arm_first,
-            g.arm_second,
+            g.overlap,
             terms.first,
             terms.second};
   }
 
   /// Stability row terms of a touching contact in tension (arms longer
   /// than the radii), from its state at this step.
-  StabilityTerms tension_terms(const ParticleStore &p, const Contact &k) const
+  StabilityTerms tension_terms(const ParticleStore &p, const Contact &k, const ContactParams &pair) const
   {
     const Index i = k.first, j = k.second;
     const double overlap = k.state.overlap;
-    return contact_stability_terms(p, i, j, law_.normal_stiffness(k.params), law_.shear_stiffness(k.params),
+    return contact_stability_terms(p, i, j, law_.normal_stiffness(pair), law_.shear_stiffness(pair),
                                    arm_factor(p.radius[i] - 0.5 * overlap, p.inv_radius[i]),
                                    arm_factor(p.radius[j] - 0.5 * overlap, p.inv_radius[j]));
   }

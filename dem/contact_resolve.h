@@ -42,23 +42,22 @@ struct ResolvedContact
 };
 
 template <class Law>
-DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactParams &params, ContactBond &bond,
-                                ContactState &state, typename Law::History &history,
-                                const ContactGeometry &g, double dt)
+DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactParams &params, bool &bonded,
+                                               const ContactBond &bond, ContactState &state,
+                                               typename Law::History &history, const ContactGeometry &g, double dt)
 {
   ResolvedContact out;
-  if (g.overlap <= 0 && !bond.intact)
+  if (g.overlap <= 0 && !bonded)
   {
     state.shear_force.setZero();
     state.normal.setZero();
     state.normal_force = 0;
     state.overlap = g.overlap;
-    state.touching = false;
     history = typename Law::History{};
     return out;
   }
 
-  const bool new_contact = !state.touching;
+  const bool new_contact = !state.touching();
   const Vec3 mid_normal = new_contact ? g.normal : Vec3(0.5 * (state.normal + g.normal));
   // Contact-point velocities: v + omega x (arm n) for the first entity and
   // v - omega x (arm n) for the second, along the mean normal.
@@ -89,14 +88,14 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
     }
   };
 
-  if (bond.intact)
+  if (bonded)
   {
     const auto record_trial = [&] { out.trial = {fn, shear.norm()}; };
     if (g.arm_first + g.arm_second > bond.break_distance)
     {
       state.bond_energy += law.stored_energy(params, fn, shear, history);
       record_trial();
-      bond.intact = false;
+      bonded = false;
       out.broke = BreakMode::displacement;
       fn = 0;
       shear.setZero();
@@ -105,7 +104,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
     {
       state.bond_energy += law.stored_energy(params, fn, shear, history);
       record_trial();
-      bond.intact = false;
+      bonded = false;
       out.broke = BreakMode::tension;
       fn = 0;
       shear.setZero();
@@ -114,7 +113,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
     {
       const double before = law.stored_energy(params, fn, shear, history);
       record_trial();
-      bond.intact = false;
+      bonded = false;
       out.broke = BreakMode::shear;
       if (fn < 0)
       {
@@ -138,12 +137,12 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   }
 
   law.commit(history, g.overlap, fn, shear_before, shear, dt);
-  state.normal = g.normal;
+  // A bond that broke apart (no overlap) leaves the contact without force.
+  out.touching = g.overlap > 0 || bonded;
+  state.normal = out.touching ? g.normal : Vec3(Vec3::Zero());
   state.normal_force = fn;
   state.overlap = g.overlap;
   state.shear_force = shear;
-  state.touching = g.overlap > 0 || bond.intact;
-  out.touching = state.touching;
   out.force = fn * g.normal + shear;
   out.shear = shear;
   return out;

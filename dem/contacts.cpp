@@ -1,6 +1,7 @@
 #include "dem/contacts.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,63 @@ ContactParams ContactTable::pair_params(const ParticleStore &p, Index i, Index j
 {
   return {in_series(p.kn[i], p.kn[j]), in_series(p.ks[i], p.ks[j]),
           std::min(p.friction[i], p.friction[j])};
+}
+
+namespace
+{
+/// The bits of the constants, so that lookups never merge two sets that
+/// compare equal but differ (+0 and -0).
+std::array<std::uint64_t, 3> bits_of(const ContactParams &p)
+{
+  std::array<std::uint64_t, 3> bits;
+  const double values[3] = {p.kn, p.ks, p.friction};
+  std::memcpy(bits.data(), values, sizeof values);
+  return bits;
+}
+} // namespace
+
+std::size_t ContactTable::ConstantsKeyHash::operator()(const ConstantsKey &k) const
+{
+  const std::hash<std::uint64_t> h;
+  return h(k[0]) ^ (h(k[1]) * 0x9e3779b97f4a7c15ull) ^ (h(k[2]) * 0xc2b2ae3d27d4eb4full);
+}
+
+ConstantsIndex ContactTable::constants_index(const ContactParams &params)
+{
+  const ConstantsKey key = bits_of(params);
+  if (last_constants_ < constants_.size() && bits_of(constants_[last_constants_]) == key)
+    return last_constants_;
+  const auto found = constants_lookup_.find(key);
+  if (found != constants_lookup_.end())
+    return last_constants_ = found->second;
+  if (constants_.size() > std::numeric_limits<ConstantsIndex>::max())
+    throw std::length_error("contact table: more than 2^32 distinct sets of pair constants");
+  last_constants_ = static_cast<ConstantsIndex>(constants_.size());
+  constants_.push_back(params);
+  constants_lookup_.emplace(key, last_constants_);
+  return last_constants_;
+}
+
+void ContactTable::compact_constants()
+{
+  constexpr ConstantsIndex unused = std::numeric_limits<ConstantsIndex>::max();
+  std::vector<ConstantsIndex> renumbered(constants_.size(), unused);
+  std::vector<ContactParams> used;
+  for (Contact &c : contacts_)
+  {
+    ConstantsIndex &to = renumbered[c.constants];
+    if (to == unused)
+    {
+      to = static_cast<ConstantsIndex>(used.size());
+      used.push_back(constants_[c.constants]);
+    }
+    c.constants = to;
+  }
+  constants_ = std::move(used);
+  constants_lookup_.clear();
+  for (std::size_t k = 0; k < constants_.size(); ++k)
+    constants_lookup_.emplace(bits_of(constants_[k]), static_cast<ConstantsIndex>(k));
+  last_constants_ = 0;
 }
 
 void ContactTable::retire(const Contact &c)
@@ -39,7 +97,7 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
     for (; old < contacts_.size() && (!bound || key(contacts_[old]) < *bound); ++old)
     {
       const Contact &c = contacts_[old];
-      if (c.bond.intact || c.state.touching)
+      if (c.bonded || c.state.touching())
         keep(old);
       else
         retire(c);
@@ -78,23 +136,41 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
       Contact entry;
       entry.first = candidates[c].first;
       entry.second = candidates[c].second;
-      entry.params = pair_params(particles, entry.first, entry.second);
+      entry.constants = constants_index(pair_params(particles, entry.first, entry.second));
       contacts_[next] = entry;
       if (law_slots_)
         law_states_[next] = LawState{};
     }
   }
+  // Constants of pairs that left the table linger until they outnumber the
+  // entries (only samples whose pairs differ make many).
+  if (constants_.size() > 2 * contacts_.size() + 64)
+    compact_constants();
   rebuild_adjacency(particles.size());
   changed_ = true;
 }
 
-void ContactTable::assign(std::vector<Contact> entries, std::vector<LawState> law_states,
+void ContactTable::assign(const std::vector<ContactRecord> &contacts, std::vector<LawState> law_states,
                           const ParticleStore &particles, const RetiredContactEnergy &retired)
 {
-  if (!law_states.empty() && law_states.size() != entries.size())
+  if (!law_states.empty() && law_states.size() != contacts.size())
     throw std::invalid_argument("contact table: " + std::to_string(law_states.size()) + " law states for " +
-                                std::to_string(entries.size()) + " contacts");
-  contacts_ = std::move(entries);
+                                std::to_string(contacts.size()) + " contacts");
+  constants_.clear();
+  constants_lookup_.clear();
+  contacts_.clear();
+  contacts_.reserve(contacts.size());
+  for (const ContactRecord &r : contacts)
+  {
+    Contact c;
+    c.first = r.first;
+    c.second = r.second;
+    c.constants = constants_index(r.params);
+    c.bonded = r.bonded;
+    c.bond = r.bond;
+    c.state = r.state;
+    contacts_.push_back(c);
+  }
   law_states_ = std::move(law_states);
   law_states_.resize(law_slots_ ? contacts_.size() : 0);
   retired_ = retired;
@@ -114,7 +190,7 @@ Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
     Contact c;
     c.first = i;
     c.second = j;
-    c.params = pair_params(particles, i, j);
+    c.constants = constants_index(pair_params(particles, i, j));
     it = contacts_.insert(it, c);
     const auto pos = it - contacts_.begin();
     if (law_slots_)
@@ -124,6 +200,15 @@ Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
     it = contacts_.begin() + pos;
   }
   return *it;
+}
+
+std::vector<ContactRecord> ContactTable::records() const
+{
+  std::vector<ContactRecord> out;
+  out.reserve(contacts_.size());
+  for (const Contact &c : contacts_)
+    out.push_back({c.first, c.second, params(c), c.bonded, c.bond, c.state});
+  return out;
 }
 
 void ContactTable::keeps_law_states(bool keep)

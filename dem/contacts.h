@@ -1,9 +1,10 @@
 // ContactTable: every ball-ball pair the engine must look at, with history.
 //
 // The table holds the neighbour candidates plus every pair that is touching
-// or bonded, sorted by (first, second).  Each entry carries its pair
-// constants (ContactParams, fixed at creation), its bond and its history
-// (ContactState).  The contact law's own history (LawState, contact.h) lives
+// or bonded, sorted by (first, second).  Each entry carries the index of its
+// pair constants (ContactParams, fixed at creation) in the table's list of
+// distinct constants (a sample of one kind of ball has a single set: four
+// bytes per entry instead of 24), its bond and its history (ContactState).  The contact law's own history (LawState, contact.h) lives
 // in a second array, parallel to the entries: structure of arrays, so that a
 // law without such history (the linear law) never loads it in its contact
 // pass.  When the neighbour list is rebuilt the table merges the new
@@ -23,7 +24,9 @@
 #include "dem/contact.h"
 #include "dem/neighbors.h"
 
+#include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace dem
@@ -37,14 +40,38 @@ struct StabilityTerms
   double second = 0; ///< 1/s^2
 };
 
+/// Index of a set of pair constants in a table's list of distinct ones.
+using ConstantsIndex = std::uint32_t;
+
+/// An entry of the table (see header note).
 struct Contact
 {
   Index first = 0;
   Index second = 0;
-  ContactParams params;
+  ConstantsIndex constants = 0; ///< its ContactParams: ContactTable::params
+  bool bonded = false;          ///< its bond holds
   ContactBond bond;
   ContactState state;
   StabilityTerms stability;
+
+  /// Removes its bond, strengths and all.
+  void unbond()
+  {
+    bonded = false;
+    bond = ContactBond{};
+  }
+};
+
+/// A ball-ball contact with its own pair constants: the form snapshots and
+/// sample files keep, independent of any table's list of constants.
+struct ContactRecord
+{
+  Index first = 0;
+  Index second = 0;
+  ContactParams params;
+  bool bonded = false; ///< its bond holds
+  ContactBond bond;
+  ContactState state;
 };
 
 /// Energy carried away by contacts that left the table.
@@ -68,10 +95,21 @@ public:
   /// Merges sorted candidates with the current entries (see header note).
   void rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles);
 
-  /// Replaces the table by saved entries (sorted by pair), their law states
-  /// (one per entry, or none: all at rest) and retired energy.
-  void assign(std::vector<Contact> entries, std::vector<LawState> law_states, const ParticleStore &particles,
-              const RetiredContactEnergy &retired);
+  /// Replaces the table by saved contacts (sorted by pair), their law
+  /// states (one per contact, or none: all at rest) and retired energy.
+  void assign(const std::vector<ContactRecord> &contacts, std::vector<LawState> law_states,
+              const ParticleStore &particles, const RetiredContactEnergy &retired);
+  /// The entries as saved contacts, in table order.
+  std::vector<ContactRecord> records() const;
+
+  /// Pair constants of an entry of this table.
+  const ContactParams &params(const Contact &c) const { return constants_[c.constants]; }
+  /// Gives an entry of this table other pair constants.
+  void set_params(Contact &c, const ContactParams &params) { c.constants = constants_index(params); }
+  /// The distinct pair constants the entries index (and perhaps some that
+  /// no entry uses any more; a rebuild drops them once they outnumber the
+  /// entries).
+  const std::vector<ContactParams> &distinct_params() const { return constants_; }
 
   /// Adds pair (i, j) if absent, its law state at rest, and returns its
   /// entry.  For set-up only (O(n)).
@@ -100,7 +138,7 @@ public:
   Vec3 force(std::size_t c) const
   {
     const ContactState &s = contacts_[c].state;
-    return s.touching ? Vec3(s.normal_force * s.normal + s.shear_force) : Vec3::Zero();
+    return s.touching() ? Vec3(s.normal_force * s.normal + s.shear_force) : Vec3::Zero();
   }
 
   /// Contacts where p is the first ball: [first_begin(p), first_begin(p+1)).
@@ -123,8 +161,22 @@ public:
 private:
   void rebuild_adjacency(Index particles);
   void retire(const Contact &c);
+  /// Index of these constants (bit for bit) in constants_, added if new.
+  ConstantsIndex constants_index(const ContactParams &params);
+  /// Drops the constants no entry uses and renumbers the entries.
+  void compact_constants();
+
+  /// The bits of a set of pair constants: equal keys, identical constants.
+  using ConstantsKey = std::array<std::uint64_t, 3>;
+  struct ConstantsKeyHash
+  {
+    std::size_t operator()(const ConstantsKey &k) const;
+  };
 
   std::vector<Contact> contacts_;
+  std::vector<ContactParams> constants_;
+  std::unordered_map<ConstantsKey, ConstantsIndex, ConstantsKeyHash> constants_lookup_;
+  ConstantsIndex last_constants_ = 0; ///< the last index found: most entries share one set
   std::vector<LawState> law_states_;
   std::vector<EntryIndex> first_start_, second_start_, second_list_;
   RetiredContactEnergy retired_;

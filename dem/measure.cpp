@@ -35,7 +35,7 @@ double porosity(const ParticleStore &particles, const ContactTable &contacts,
                                         (particles.position[p] - sphere.centre).norm());
   for (const Contact &c : contacts.entries())
   {
-    if (!c.state.touching || c.state.overlap <= 0)
+    if (!c.state.touching() || c.state.overlap <= 0)
       continue;
     const Vec3 &xi = particles.position[c.first];
     const Vec3 &xj = particles.position[c.second];
@@ -58,7 +58,7 @@ double coordination_number(const ParticleStore &particles, const ContactTable &c
   for (Index p = 0; p < particles.size(); ++p)
     balls += inside(p) ? 1 : 0;
   for (const Contact &c : contacts.entries())
-    if (c.state.touching)
+    if (c.state.touching())
       ends += (inside(c.first) ? 1 : 0) + (inside(c.second) ? 1 : 0);
   return balls > 0 ? static_cast<double>(ends) / static_cast<double>(balls) : 0.0;
 }
@@ -67,7 +67,7 @@ double coordination_number(const ParticleStore &particles, const ContactTable &c
 {
   std::size_t touching = 0;
   for (const Contact &c : contacts.entries())
-    touching += c.state.touching ? 1 : 0;
+    touching += c.state.touching() ? 1 : 0;
   return particles.size() > 0 ? 2.0 * static_cast<double>(touching) / particles.size() : 0.0;
 }
 
@@ -76,7 +76,7 @@ ContactForceStatistics contact_force_statistics(const ContactTable &contacts)
   ContactForceStatistics s;
   double sum = 0;
   for (std::size_t c = 0; c < contacts.size(); ++c)
-    if (contacts[c].state.touching)
+    if (contacts[c].state.touching())
     {
       const double f = contacts.force(c).norm();
       sum += f;
@@ -110,7 +110,7 @@ Tensor3 average_stress(const Simulation &sim, double volume)
   for (std::size_t c = 0; c < sim.contacts().size(); ++c)
   {
     const Contact &k = sim.contacts()[c];
-    if (!k.state.touching)
+    if (!k.state.touching())
       continue;
     sum += sim.contacts().force(c) * (p.position[k.second] - p.position[k.first]).transpose();
   }
@@ -119,7 +119,7 @@ Tensor3 average_stress(const Simulation &sim, double volume)
     for (Index b = 0; b < p.size(); ++b)
     {
       const ContactState &s = walls.state(w, b);
-      if (!walls[w].enabled || !s.touching)
+      if (!walls[w].enabled || !s.touching())
         continue;
       const Vec3 force = s.normal_force * s.normal + s.shear_force;
       sum += force * ((p.radius[b] - 0.5 * s.overlap) * s.normal).transpose();
@@ -138,7 +138,7 @@ Tensor3 fabric_tensor(const ParticleStore &particles, const ContactTable &contac
   std::size_t n = 0;
   for (const Contact &c : contacts.entries())
   {
-    if (!c.state.touching)
+    if (!c.state.touching())
       continue;
     const Vec3 d = (particles.position[c.second] - particles.position[c.first]).normalized();
     sum += d * d.transpose();
@@ -151,14 +151,14 @@ std::vector<int> contacts_per_ball(const Simulation &sim)
 {
   std::vector<int> count(static_cast<std::size_t>(sim.particles().size()), 0);
   for (const Contact &c : sim.contacts().entries())
-    if (c.state.touching)
+    if (c.state.touching())
     {
       ++count[c.first];
       ++count[c.second];
     }
   for (WallIndex w = 0; w < sim.walls().size(); ++w)
     for (Index b = 0; b < sim.particles().size(); ++b)
-      if (sim.walls()[w].enabled && sim.walls().state(w, b).touching)
+      if (sim.walls()[w].enabled && sim.walls().state(w, b).touching())
         ++count[b];
   return count;
 }

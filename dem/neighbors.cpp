@@ -21,6 +21,13 @@ bool NeighborList::stale(const ParticleStore &particles) const
   return reference_.size() != static_cast<std::size_t>(particles.size());
 }
 
+void NeighborList::release_candidates()
+{
+  std::vector<Pair>().swap(pairs_);
+  for (std::vector<Index> *scratch : {&cell_start_, &cell_members_, &cell_of_, &cell_fill_, &partners_})
+    std::vector<Index>().swap(*scratch);
+}
+
 void NeighborList::rebuild(const ParticleStore &particles)
 {
   const Index n = particles.size();

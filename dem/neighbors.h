@@ -44,6 +44,11 @@ public:
   const std::vector<Pair> &pairs() const { return pairs_; }
   std::size_t rebuilds() const { return rebuilds_; }
 
+  /// Frees the candidates and the cells once their user has taken the
+  /// candidates (the next build makes them anew); the reference positions,
+  /// which say when that is due, stay.
+  void release_candidates();
+
 private:
   double skin_;
   double quarter_skin_sq_ = 0;

@@ -325,7 +325,7 @@ void Preparation::reduce_stress()
   double mean_overlap = 0;
   std::size_t touching = 0;
   for (const Contact &c : sim_->contacts().entries())
-    if (c.state.touching && c.state.overlap > 0)
+    if (c.state.touching() && c.state.overlap > 0)
     {
       mean_overlap += c.state.overlap;
       ++touching;
@@ -439,8 +439,13 @@ void Preparation::restore_friction()
   ParticleStore &p = sim_->particles();
   for (Index b = 0; b < p.size(); ++b)
     p.friction[b] = s_.ball.friction;
-  for (Contact &c : sim_->contacts().entries())
-    c.params.friction = std::min(p.friction[c.first], p.friction[c.second]);
+  ContactTable &table = sim_->contacts();
+  for (Contact &c : table.entries())
+  {
+    ContactParams pair = table.params(c);
+    pair.friction = std::min(p.friction[c.first], p.friction[c.second]);
+    table.set_params(c, pair);
+  }
 }
 
 void Preparation::bond_and_release()

@@ -29,7 +29,7 @@ std::array<WallTally, N> tally_walls(const Simulation &sim, const std::array<Wal
     for (std::size_t k = 0; k < N; ++k)
     {
       const ContactState &c = sim.walls().state(walls[k], b);
-      if (c.touching)
+      if (c.touching())
       {
         ++t[k].contacts;
         t[k].stiffness += in_series(p.kn[b], sim.walls()[walls[k]].props.kn);

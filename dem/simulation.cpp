@@ -48,7 +48,7 @@ Simulation::Simulation(Snapshot snap, std::unique_ptr<ContactModel> model, Simul
   std::vector<LawState> law_states;
   if (snap.contact_law == model_->name())
     law_states = std::move(snap.law_states);
-  contacts_.assign(std::move(snap.contacts), std::move(law_states), particles_, snap.clock.retired);
+  contacts_.assign(snap.contacts, std::move(law_states), particles_, snap.clock.retired);
   const SimulationClock &c = snap.clock;
   time_ = c.time;
   step_ = c.steps;
@@ -71,7 +71,7 @@ Snapshot Simulation::snapshot() const
   for (WallIndex w = 0; w < walls_.size(); ++w)
     s.walls.push_back(walls_[w]);
   s.wall_contacts = walls_.contacts();
-  s.contacts = contacts_.entries();
+  s.contacts = contacts_.records();
   s.contact_law = model_->name();
   s.law_states = contacts_.law_states();
   SimulationClock &c = s.clock;
@@ -138,7 +138,7 @@ double estimated_memory_bytes(double particles, int walls)
                       + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
                       + 2 * sizeof(EntryIndex)                   // contact table adjacency
                       + double(walls) * sizeof(std::int32_t) + sizeof(WallContact);
-  constexpr double load_record = 10 * sizeof(double); // the force pass's loads of a pair (contact_model.h)
+  constexpr double load_record = 9 * sizeof(double); // the force pass's loads of a pair (contact_model.h)
   const double pair = sizeof(Pair) + sizeof(Contact) + sizeof(LawState) + sizeof(EntryIndex) + load_record;
   return 1.5 * particles * (ball + pairs_per_ball * pair);
 }
@@ -159,8 +159,13 @@ void Simulation::refresh_contacts()
   // before a refresh, so this is computed here, not every step.
   lone_bound_max_ = lone_contact_bound(particles_);
   neighbors_.set_skin(settings_.skin_fraction * particles_.max_radius());
+  // The rebuild's scratch (candidates, cells) and the force pass's (load
+  // records) are never needed at once: each is freed before the other is
+  // made, so that peak memory holds only the larger.
+  model_->release_scratch();
   neighbors_.rebuild(particles_);
   contacts_.rebuild(neighbors_.pairs(), particles_);
+  neighbors_.release_candidates();
   rebuild_requested_ = false;
 }
 
@@ -394,7 +399,7 @@ std::pair<double, double> Simulation::wall_energy(WallIndex w) const
   {
     const ContactState &s = walls_.state(w, p);
     friction += s.friction_work;
-    if (!s.touching)
+    if (!s.touching())
       continue;
     const ContactParams params{in_series(particles_.kn[p], wp.kn), in_series(particles_.ks[p], wp.ks), 0};
     strain += wall_law.stored_energy(params, s.normal_force, s.shear_force, {});
@@ -418,7 +423,7 @@ Vec3 Simulation::wall_force(WallIndex w) const
   for (Index p = 0; p < particles_.size(); ++p)
   {
     const ContactState &s = walls_.state(w, p);
-    if (s.touching)
+    if (s.touching())
       f -= s.normal_force * s.normal + s.shear_force;
   }
   return f;

@@ -96,7 +96,7 @@ struct Snapshot
   ParticleStore particles;
   std::vector<Wall> walls;
   std::vector<WallContact> wall_contacts; ///< increasing (wall, ball); only balls that touched a wall
-  std::vector<Contact> contacts;          ///< sorted by (first, second)
+  std::vector<ContactRecord> contacts;    ///< sorted by (first, second)
   std::string contact_law;                ///< keyword of the law of law_states (empty: none)
   std::vector<LawState> law_states;       ///< one per contact, or none (all at rest)
   SimulationClock clock;

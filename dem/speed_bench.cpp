@@ -51,7 +51,7 @@ BenchTiming time_compression(Simulation &sim, WallIndex bottom, WallIndex top, d
 {
   sim.refresh_contacts();
   for (Contact &c : sim.contacts().entries())
-    c.bond = ContactBond{};
+    c.unbond();
   BondSettings bonds;
   bonds.normal_strength = bonds.shear_strength = 1e12;
   bond_touching_pairs(sim.contacts(), sim.particles(), bonds);
@@ -74,7 +74,7 @@ BenchTiming time_compression(Simulation &sim, WallIndex bottom, WallIndex top, d
     out.seconds = std::min(out.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   for (const Contact &c : sim.contacts().entries())
-    out.touching += c.state.touching ? 1 : 0;
+    out.touching += c.state.touching() ? 1 : 0;
   return out;
 }
 

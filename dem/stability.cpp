@@ -44,9 +44,9 @@ double exact_max_eigenvalue(const Simulation &sim)
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n, 6 * n);
   for (const Contact &c : sim.contacts().entries())
   {
-    if (!c.state.touching)
+    if (!c.state.touching())
       continue;
-    const ContactParams k = sim.model().tangent_stiffness(c);
+    const ContactParams k = sim.model().tangent_stiffness(sim.contacts().params(c));
     const Vec3 d = p.position[c.second] - p.position[c.first];
     const double overlap = p.radius[c.first] + p.radius[c.second] - d.norm();
     add_contact(K, c.first, c.second, d.normalized(), p.radius[c.first] - 0.5 * overlap,
@@ -57,7 +57,7 @@ double exact_max_eigenvalue(const Simulation &sim)
     for (Index b = 0; b < n; ++b)
     {
       const ContactState &s = walls.state(w, b);
-      if (!walls[w].enabled || !s.touching)
+      if (!walls[w].enabled || !s.touching())
         continue;
       const ContactGeometry g = walls.geometry(w, p.position[b], p.radius[b], p.velocity[b], p.spin[b]);
       // The wall is the first entity; index -1 drops its (infinite-mass) dofs.

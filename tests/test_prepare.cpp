@@ -60,8 +60,8 @@ TEST_CASE("a 200-ball preparation meets its own targets and feeds a uniaxial tes
   // fabric tensor has E|D|^2 = (2/3)/n; three standard deviations of that
   // sampling noise are allowed (walls add a little real anisotropy).
   std::size_t contacts = 0;
-  for (const dem::Contact &c : snap.contacts)
-    contacts += c.state.touching ? 1 : 0;
+  for (const dem::ContactRecord &c : snap.contacts)
+    contacts += c.state.touching() ? 1 : 0;
   REQUIRE(contacts > 100);
   CHECK(r["fabric_deviator_norm"].get<double>() < 3 * std::sqrt(2.0 / (3.0 * contacts)));
 

@@ -122,7 +122,8 @@ TEST_CASE("an unbonded Burger's contact slips at mu F_n and carries no tension (
   dem::ContactParams params;
   params.friction = 0.7;
   params.ks = 1e6;
-  dem::ContactBond unbonded;
+  bool bonded = false;
+  const dem::ContactBond no_bond;
   dem::ContactState state;
   dem::BurgersHistory h;
   dem::ContactGeometry g{dem::Vec3::UnitX(), 1e-6, dem::Vec3(0, 1e-2, 0), dem::Vec3::Zero(), dem::Vec3::Zero(),
@@ -130,13 +131,13 @@ TEST_CASE("an unbonded Burger's contact slips at mu F_n and carries no tension (
   const double dt = 1e-6;
   dem::ResolvedContact r{};
   for (int s = 0; s < 200; ++s)
-    r = dem::resolve_contact(law, params, unbonded, state, h, g, dt);
+    r = dem::resolve_contact(law, params, bonded, no_bond, state, h, g, dt);
   REQUIRE(state.normal_force > 0);
   CHECK(state.shear_force.norm() == Approx(params.friction * state.normal_force).epsilon(1e-12));
   CHECK(state.friction_work > 0);
   // Pulled apart while still overlapping less: never a tensile force.
   g.overlap = 0.5e-6;
   g.velocity_difference = dem::Vec3(1, 0, 0);
-  r = dem::resolve_contact(law, params, unbonded, state, h, g, dt);
+  r = dem::resolve_contact(law, params, bonded, no_bond, state, h, g, dt);
   CHECK(state.normal_force >= 0);
 }

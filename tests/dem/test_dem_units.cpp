@@ -60,7 +60,7 @@ TEST_CASE("contact history survives neighbour rebuilds, bonded pairs stay listed
   sim.refresh_contacts();
   dem::bond_pair(sim.contacts(), sim.particles(), 0, 1, 10.0, 10.0);
   sim.contacts().find(0, 1)->state.shear_force = Vec3(0, 0.25, 0);
-  sim.contacts().find(0, 1)->state.touching = true;
+  sim.contacts().find(0, 1)->state.normal = Vec3::UnitX(); // touching
   // Pull the balls far apart (beyond any skin) and rebuild: the bonded pair
   // must still be in the table with its history.
   sim.particles().position[1].x() = 5e-3;
@@ -68,11 +68,11 @@ TEST_CASE("contact history survives neighbour rebuilds, bonded pairs stay listed
   sim.refresh_contacts();
   const dem::Contact *c = sim.contacts().find(0, 1);
   REQUIRE(c != nullptr);
-  CHECK(c->bond.intact);
+  CHECK(c->bonded);
   CHECK(c->state.shear_force.y() == 0.25);
   // An unbonded, separated pair is dropped at the next rebuild.
-  sim.contacts().find(0, 1)->bond.intact = false;
-  sim.contacts().find(0, 1)->state.touching = false;
+  sim.contacts().find(0, 1)->bonded = false;
+  sim.contacts().find(0, 1)->state.normal.setZero(); // not touching
   sim.invalidate_neighbors();
   sim.refresh_contacts();
   CHECK(sim.contacts().find(0, 1) == nullptr);

@@ -84,7 +84,7 @@ TEST_CASE("table rebuilds carry each contact's law state, a new pair starts at r
   REQUIRE(t.law_states().size() == 2);
   t.law_states()[0] = element(1.0);
   t.law_states()[1] = element(2.0);
-  t[1].state.touching = true; // (2, 3) stays even when no longer a candidate
+  t[1].state.normal = Vec3::UnitX(); // touching: (2, 3) stays even when no longer a candidate
 
   // (1, 2) is new and lands between the two old entries; (2, 3) is kept for
   // its touching state although it is no candidate any more.
@@ -104,7 +104,7 @@ TEST_CASE("table rebuilds carry each contact's law state, a new pair starts at r
   // A pair that left the table and comes back is a new contact: at rest.
   t.rebuild({{0, 1}}, p);
   CHECK(t.find(2, 3) != nullptr);
-  t.find(2, 3)->state.touching = false;
+  t.find(2, 3)->state.normal.setZero();
   t.rebuild({{0, 1}}, p);
   CHECK(t.find(2, 3) == nullptr);
   t.rebuild({{0, 1}, {2, 3}}, p);
@@ -112,7 +112,7 @@ TEST_CASE("table rebuilds carry each contact's law state, a new pair starts at r
   CHECK(t.law_states()[t.find(0, 1) - &t[0]] == element(1.0));
 
   // Assigned entries take their states, or rest when none are given.
-  std::vector<dem::Contact> entries = t.entries();
+  const std::vector<dem::ContactRecord> entries = t.records();
   t.assign(entries, {element(3.0), element(4.0)}, p, {});
   CHECK(t.law_states()[1] == element(4.0));
   t.assign(entries, {}, p, {});
@@ -148,21 +148,22 @@ TEST_CASE("an in-place rebuild gives the table a plain merge into a new one give
     t.rebuild(random_pairs(0.1 + 0.2 * (round % 3)), p);
     for (std::size_t c = 0; c < t.size(); ++c)
     {
-      t[c].state.touching = unit(random) < 0.3;
-      t[c].bond.intact = unit(random) < 0.2;
+      t[c].state.normal = unit(random) < 0.3 ? Vec3(Vec3::UnitX()) : Vec3(Vec3::Zero());
+      t[c].bonded = unit(random) < 0.2;
       t[c].state.friction_work = unit(random);
       t[c].state.bond_energy = unit(random);
       t.law_states()[c] = element(unit(random));
     }
     const std::vector<dem::Pair> candidates = random_pairs(0.05 + 0.1 * (round % 4));
 
-    std::map<dem::Pair, std::pair<dem::Contact, dem::LawState>> expected;
+    std::map<dem::Pair, std::pair<dem::ContactRecord, dem::LawState>> expected;
     dem::RetiredContactEnergy retired;
+    const std::vector<dem::ContactRecord> before = t.records();
     for (std::size_t c = 0; c < t.size(); ++c)
     {
-      const dem::Contact &k = t[c];
+      const dem::ContactRecord &k = before[c];
       const dem::Pair key{k.first, k.second};
-      if (k.state.touching || k.bond.intact || std::binary_search(candidates.begin(), candidates.end(), key))
+      if (k.state.touching() || k.bonded || std::binary_search(candidates.begin(), candidates.end(), key))
         expected[key] = {k, t.law_states()[c]};
       else
       {
@@ -173,7 +174,7 @@ TEST_CASE("an in-place rebuild gives the table a plain merge into a new one give
     for (const dem::Pair &pair : candidates)
       if (expected.count(pair) == 0)
       {
-        dem::Contact k;
+        dem::ContactRecord k;
         k.first = pair.first;
         k.second = pair.second;
         k.params = dem::ContactTable::pair_params(p, pair.first, pair.second);
@@ -188,9 +189,10 @@ TEST_CASE("an in-place rebuild gives the table a plain merge into a new one give
     {
       const dem::Contact &k = t[c];
       CHECK((k.first == key.first && k.second == key.second));
-      CHECK(k.params.kn == entry.first.params.kn);
-      CHECK(k.state.touching == entry.first.state.touching);
-      CHECK(k.bond.intact == entry.first.bond.intact);
+      const dem::ContactParams &pair = t.params(k), &expected_pair = entry.first.params;
+      CHECK((pair.kn == expected_pair.kn && pair.ks == expected_pair.ks && pair.friction == expected_pair.friction));
+      CHECK(k.state.touching() == entry.first.state.touching());
+      CHECK(k.bonded == entry.first.bonded);
       CHECK(k.state.friction_work == entry.first.state.friction_work);
       CHECK(t.law_states()[c] == entry.second);
       ++c;
@@ -210,6 +212,59 @@ TEST_CASE("an in-place rebuild gives the table a plain merge into a new one give
       CHECK(listed == seconds);
     }
   }
+}
+
+TEST_CASE("entries share their pair constants, each distinct set once, through edits, saves and rebuilds",
+          "[dem][contacts]")
+{
+  // Twelve balls of three stiffnesses: 66 pairs with six distinct sets of
+  // constants (stiffnesses in series), the list the entries index.
+  dem::ParticleStore p;
+  for (int k = 0; k < 12; ++k)
+    p.add(ball(Vec3(2e-3 * k, 0, 0), 1e-3, 1e6 * (1 + k % 3), 1e5, 0.5));
+  std::vector<dem::Pair> all;
+  for (dem::Index i = 0; i < 12; ++i)
+    for (dem::Index j = i + 1; j < 12; ++j)
+      all.emplace_back(i, j);
+  const auto same = [](const dem::ContactParams &a, const dem::ContactParams &b) {
+    return a.kn == b.kn && a.ks == b.ks && a.friction == b.friction;
+  };
+  dem::ContactTable t;
+  t.rebuild(all, p);
+  REQUIRE(t.size() == 66);
+  CHECK(t.distinct_params().size() == 6);
+  for (std::size_t c = 0; c < t.size(); ++c)
+    CHECK(same(t.params(t[c]), dem::ContactTable::pair_params(p, t[c].first, t[c].second)));
+
+  // An edit gives each entry its own constants and leaves the others'.
+  for (std::size_t c = 0; c < t.size(); ++c)
+  {
+    dem::ContactParams edited = t.params(t[c]);
+    edited.friction = 1 + 0.001 * double(c + 1); // none equal to the balls' 0.5
+    t.set_params(t[c], edited);
+  }
+  CHECK(t.distinct_params().size() == 6 + 66);
+  for (std::size_t c = 0; c < t.size(); ++c)
+  {
+    CHECK(t.params(t[c]).friction == 1 + 0.001 * double(c + 1));
+    CHECK(t.params(t[c]).kn == dem::ContactTable::pair_params(p, t[c].first, t[c].second).kn);
+  }
+
+  // Saved and assigned, every entry has the same constants.
+  const std::vector<dem::ContactRecord> saved = t.records();
+  dem::ContactTable u;
+  u.assign(saved, {}, p, {});
+  REQUIRE(u.size() == saved.size());
+  CHECK(u.distinct_params().size() == 66);
+  for (std::size_t c = 0; c < u.size(); ++c)
+    CHECK(same(u.params(u[c]), saved[c].params));
+
+  // A rebuild that leaves one entry drops the sets no entry uses once they
+  // outnumber the entries, and keeps that entry's constants.
+  t.rebuild({{0, 1}}, p);
+  REQUIRE(t.size() == 1);
+  CHECK(t.distinct_params().size() == 1);
+  CHECK(same(t.params(t[0]), saved[0].params));
 }
 
 TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][law_state][snapshot]")
@@ -261,7 +316,7 @@ TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][la
     for (const dem::Contact &k : a.contacts().entries())
     {
       const dem::Contact *other = b.contacts().find(k.first, k.second);
-      if (!k.state.touching)
+      if (!k.state.touching())
         continue;
       REQUIRE(other != nullptr);
       CHECK(other->state.normal_force == k.state.normal_force);

@@ -60,7 +60,11 @@ double rigid_turn_error(const Vec3 &axis, int steps)
     p.set_motion(b, true, true);
   dem::Simulation sim = simulation(std::move(p), undamped(1e-7));
   sim.refresh_contacts();
-  sim.contacts().ensure(0, 1, sim.particles()).params.friction = 1e6; // no slip: a pure history test
+  dem::ContactTable &table = sim.contacts();
+  dem::Contact &pair = table.ensure(0, 1, sim.particles());
+  dem::ContactParams no_slip = table.params(pair); // a pure history test
+  no_slip.friction = 1e6;
+  table.set_params(pair, no_slip);
 
   // Phase 1: slide ball 1 tangentially by 1 um to build up a shear force.
   sim.particles().velocity[1] = v * t;

@@ -118,13 +118,13 @@ void ParaviewWriter::write_frame(const dem::Simulation &sim, double time)
   std::vector<double> fn, fs, state, bonded;
   for (const dem::Contact &c : sim.contacts().entries())
   {
-    if (!c.state.touching)
+    if (!c.state.touching())
       continue;
     lines.emplace_back(c.first, c.second);
     fn.push_back(c.state.normal_force);
     fs.push_back(c.state.shear_force.norm());
     state.push_back(c.state.normal_force >= 0 ? 1.0 : -1.0);
-    bonded.push_back(c.bond.intact ? 1.0 : 0.0);
+    bonded.push_back(c.bonded ? 1.0 : 0.0);
   }
   std::ostringstream cd;
   cd.precision(10);

@@ -65,7 +65,7 @@ std::vector<std::string> wall_contact_columns()
 
 void append_state(json &row, const dem::ContactState &s)
 {
-  for (double v : {s.touching ? 1.0 : 0.0, s.normal_force, s.overlap, s.normal.x(), s.normal.y(), s.normal.z(),
+  for (double v : {s.touching() ? 1.0 : 0.0, s.normal_force, s.overlap, s.normal.x(), s.normal.y(), s.normal.z(),
                    s.shear_force.x(), s.shear_force.y(), s.shear_force.z(), s.friction_work, s.bond_energy})
     row.push_back(v);
 }
@@ -196,10 +196,15 @@ public:
       return real(row[at + k], cell_key(table, r, state_columns[k]), sign);
     };
     dem::ContactState s;
-    s.touching = flag(row[at], cell_key(table, r, state_columns[0]));
+    const bool touching = flag(row[at], cell_key(table, r, state_columns[0]));
     s.normal_force = v(1);
     s.overlap = v(2);
     s.normal = {v(3), v(4), v(5)};
+    // A contact that carries no force keeps no normal (ContactState).
+    if (!touching)
+      s.normal.setZero();
+    else if (!s.touching())
+      fail(cell_key(table, r, state_columns[3]), row[at + 3], "a touching contact's unit normal, not all zero");
     s.shear_force = {v(6), v(7), v(8)};
     s.friction_work = v(9);
     s.bond_energy = v(10);
@@ -280,7 +285,7 @@ void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const 
     p.friction[b] = ball.friction;
     p.set_radius(b, p.radius[b]); // mass and inertia from the new density
   }
-  for (dem::Contact &c : snap.contacts)
+  for (dem::ContactRecord &c : snap.contacts)
     c.params = dem::ContactTable::pair_params(p, c.first, c.second);
   snap.walls[sample.cell.bottom].props = platen;
   snap.walls[sample.cell.top].props = platen;
@@ -357,8 +362,8 @@ void write_sample(const std::string &path, const SampleFile &sample)
   json contacts = json::array();
   for (std::size_t e = 0; e < s.contacts.size(); ++e)
   {
-    const dem::Contact &k = s.contacts[e];
-    json row = json::array({k.first, k.second, k.params.kn, k.params.ks, k.params.friction, k.bond.intact ? 1 : 0,
+    const dem::ContactRecord &k = s.contacts[e];
+    json row = json::array({k.first, k.second, k.params.kn, k.params.ks, k.params.friction, k.bonded ? 1 : 0,
                             k.bond.normal_strength, k.bond.shear_strength});
     // No displacement criterion is an infinite distance: null in JSON.
     row.push_back(std::isfinite(k.bond.break_distance) ? json(k.bond.break_distance) : json(nullptr));
@@ -374,7 +379,7 @@ void write_sample(const std::string &path, const SampleFile &sample)
   for (const dem::WallContact &c : s.wall_contacts)
   {
     const dem::ContactState &st = c.state;
-    if (!st.touching && st.friction_work == 0 && st.shear_force.isZero(0))
+    if (!st.touching() && st.friction_work == 0 && st.shear_force.isZero(0))
       continue;
     json row = json::array({static_cast<long>(c.wall), static_cast<long>(c.ball)});
     append_state(row, st);
@@ -496,7 +501,7 @@ SampleFile read_sample(const std::string &path)
     const json &row = contacts[r];
     const auto key = [&](std::size_t k) { return Fields::cell_key("contacts", r, columns[k]); };
     const auto v = [&](std::size_t k, Sign sign = Sign::any) { return f.real(row[k], key(k), sign); };
-    dem::Contact k;
+    dem::ContactRecord k;
     k.first = static_cast<dem::Index>(f.integer(row[0], key(0), 0, n - 1, "a ball index"));
     k.second = static_cast<dem::Index>(f.integer(row[1], key(1), 0, n - 1, "a ball index"));
     if (k.second <= k.first)
@@ -506,7 +511,7 @@ SampleFile read_sample(const std::string &path)
                                  std::pair(k.first, k.second)))
       f.fail(Fields::row_key("contacts", r), row, "expected the rows sorted by (first, second), each pair once");
     k.params = {v(2, Sign::non_negative), v(3, Sign::non_negative), v(4, Sign::non_negative)};
-    k.bond.intact = f.flag(row[5], key(5));
+    k.bonded = f.flag(row[5], key(5));
     k.bond.normal_strength = v(6, Sign::non_negative);
     k.bond.shear_strength = v(7, Sign::non_negative);
     // No displacement criterion is an infinite distance: null in JSON.

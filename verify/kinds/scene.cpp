@@ -368,9 +368,9 @@ public:
       const dem::ContactState s = c ? c->state : dem::ContactState{};
       const double gap =
         (P.position[pr.second] - P.position[pr.first]).norm() - P.radius[pr.first] - P.radius[pr.second];
-      result_.contacts.add({t, double(pr.first), double(pr.second), s.touching ? s.overlap : -gap, s.normal_force,
+      result_.contacts.add({t, double(pr.first), double(pr.second), s.touching() ? s.overlap : -gap, s.normal_force,
                             s.shear_force.norm(), s.shear_force.x(), s.shear_force.y(), s.shear_force.z(),
-                            c && c->bond.intact ? 1.0 : 0.0, s.touching ? 1.0 : 0.0});
+                            c && c->bonded ? 1.0 : 0.0, s.touching() ? 1.0 : 0.0});
     }
   }
 
@@ -380,8 +380,8 @@ public:
     std::size_t touching = 0, intact = 0;
     for (const dem::Contact &c : sim.contacts().entries())
     {
-      touching += c.state.touching ? 1 : 0;
-      intact += c.bond.intact ? 1 : 0;
+      touching += c.state.touching() ? 1 : 0;
+      intact += c.bonded ? 1 : 0;
     }
     std::vector<double> row = {sim.time() - sim.time_step(),
                                double(sim.steps() - 1),

@@ -192,13 +192,13 @@ Setup sample_setup(const UniaxialSpec &spec)
   if (spec.bonds.install != "sample")
   {
     for (dem::Contact &c : s.sim->contacts().entries())
-      c.bond = dem::ContactBond{};
+      c.unbond();
     if (spec.bonds.install == "touching")
       s.bonds = dem::bond_touching_pairs(s.sim->contacts(), s.sim->particles(), spec.bonds.settings);
   }
   else
     for (const dem::Contact &c : s.sim->contacts().entries())
-      s.bonds.bonded += c.bond.intact ? 1 : 0;
+      s.bonds.bonded += c.bonded ? 1 : 0;
   spec.bonds.finish(s.sim->contacts(), s.sim->particles(), s.rate);
   s.cell = std::move(sample.cell);
   std::ostringstream d;
