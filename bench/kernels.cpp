@@ -1,0 +1,96 @@
+// demvv_kernel_bench: the step's kernels one by one (Google Benchmark), so
+// that a change to one of them is measured apart from the others.
+//
+//   force_pass/LAW/BALLS   Simulation::compute_forces: every contact resolved
+//                          with the law, each ball's resultant summed
+//   integrate/BALLS        Simulation::integrate: the centred-difference
+//                          update of every ball
+//   rebuild/BALLS          Simulation::refresh_contacts: the neighbour cells
+//                          and the contact table's merge
+//
+// Each works on the speed benchmark's bonded sc lattice cylinder
+// (dem/speed_bench.h) of about BALLS balls after 400 steps of its
+// compression, so that the contacts carry force as in a run; the kernel is
+// then repeated on that state (integrate runs the steps on, with each
+// step's force pass outside the timing).  Threads: OpenMP's choice
+// (OMP_NUM_THREADS fixes it).  Rates are given per ball (particle_steps, per
+// second) and per contact entry (entries).  CI builds the binary and runs it
+// once, briefly, as a smoke test; it never times it.
+#include "dem/speed_bench.h"
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+namespace
+{
+/// The compressed lattice of about `balls` balls with the law `law`, built
+/// once per process and kept for every benchmark that asks for it.
+dem::Simulation &specimen(const std::string &law, double balls)
+{
+  static std::map<std::pair<std::string, double>, std::unique_ptr<dem::Simulation>> built;
+  std::unique_ptr<dem::Simulation> &sim = built[{law, balls}];
+  if (!sim)
+  {
+    dem::Specimen cell = dem::bench_lattice_specimen(dem::Lattice::simple_cubic, balls);
+    dem::SimulationSettings settings;
+    settings.local_damping = 0.7;
+    const double area = cell.area();
+    const dem::WallIndex bottom = cell.bottom, top = cell.top;
+    sim = std::make_unique<dem::Simulation>(std::move(cell.particles), std::move(cell.walls),
+                                            dem::make_contact_model(law, {}), settings);
+    dem::time_compression(*sim, bottom, top, area, 200, 1);
+  }
+  return *sim;
+}
+
+void report_rates(benchmark::State &state, const dem::Simulation &sim)
+{
+  const double iterations = static_cast<double>(state.iterations());
+  state.counters["particle_steps"] =
+    benchmark::Counter(iterations * sim.particles().size(), benchmark::Counter::kIsRate);
+  state.counters["entries"] = benchmark::Counter(iterations * sim.contacts().size(), benchmark::Counter::kIsRate);
+}
+
+void force_pass(benchmark::State &state, const std::string &law)
+{
+  dem::Simulation &sim = specimen(law, static_cast<double>(state.range(0)));
+  for (auto _ : state)
+    sim.compute_forces();
+  report_rates(state, sim);
+}
+
+void integrate(benchmark::State &state)
+{
+  dem::Simulation &sim = specimen("linear", static_cast<double>(state.range(0)));
+  for (auto _ : state)
+  {
+    state.PauseTiming(); // integrate needs this step's forces
+    sim.compute_forces();
+    state.ResumeTiming();
+    sim.integrate();
+  }
+  report_rates(state, sim);
+}
+
+void rebuild(benchmark::State &state)
+{
+  dem::Simulation &sim = specimen("linear", static_cast<double>(state.range(0)));
+  for (auto _ : state)
+    sim.refresh_contacts();
+  report_rates(state, sim);
+}
+} // namespace
+
+BENCHMARK_CAPTURE(force_pass, linear, std::string("linear"))->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(force_pass, burgers, std::string("burgers"))->Arg(6000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(force_pass, modified_burgers, std::string("modified_burgers"))
+  ->Arg(6000)
+  ->Unit(benchmark::kMicrosecond);
+BENCHMARK(integrate)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(rebuild)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
+
+BENCHMARK_MAIN();
