@@ -16,36 +16,31 @@ ContactParams ContactTable::pair_params(const ParticleStore &p, Index i, Index j
 
 namespace
 {
-/// The bits of the constants, so that lookups never merge two sets that
-/// compare equal but differ (+0 and -0).
-std::array<std::uint64_t, 3> bits_of(const ContactParams &p)
+/// Whether two sets of constants are the same bit for bit (so that +0 and
+/// -0 stay apart).
+bool same_bits(const ContactParams &a, const ContactParams &b)
 {
-  std::array<std::uint64_t, 3> bits;
-  const double values[3] = {p.kn, p.ks, p.friction};
-  std::memcpy(bits.data(), values, sizeof values);
-  return bits;
+  const double x[3] = {a.kn, a.ks, a.friction}, y[3] = {b.kn, b.ks, b.friction};
+  return std::memcmp(x, y, sizeof x) == 0;
 }
 } // namespace
 
-std::size_t ContactTable::ConstantsKeyHash::operator()(const ConstantsKey &k) const
-{
-  const std::hash<std::uint64_t> h;
-  return h(k[0]) ^ (h(k[1]) * 0x9e3779b97f4a7c15ull) ^ (h(k[2]) * 0xc2b2ae3d27d4eb4full);
-}
-
 ConstantsIndex ContactTable::constants_index(const ContactParams &params)
 {
-  const ConstantsKey key = bits_of(params);
-  if (last_constants_ < constants_.size() && bits_of(constants_[last_constants_]) == key)
+  // Most entries share the last set found; a table of few sets is searched
+  // whole; beyond that a set is added unsearched (a sample whose pairs all
+  // differ then costs its 24 bytes per entry, as without the list).
+  constexpr std::size_t searched = 64;
+  if (last_constants_ < constants_.size() && same_bits(constants_[last_constants_], params))
     return last_constants_;
-  const auto found = constants_lookup_.find(key);
-  if (found != constants_lookup_.end())
-    return last_constants_ = found->second;
+  if (constants_.size() <= searched)
+    for (std::size_t k = 0; k < constants_.size(); ++k)
+      if (same_bits(constants_[k], params))
+        return last_constants_ = static_cast<ConstantsIndex>(k);
   if (constants_.size() > std::numeric_limits<ConstantsIndex>::max())
-    throw std::length_error("contact table: more than 2^32 distinct sets of pair constants");
+    throw std::length_error("contact table: more than 2^32 sets of pair constants");
   last_constants_ = static_cast<ConstantsIndex>(constants_.size());
   constants_.push_back(params);
-  constants_lookup_.emplace(key, last_constants_);
   return last_constants_;
 }
 
@@ -65,9 +60,6 @@ void ContactTable::compact_constants()
     c.constants = to;
   }
   constants_ = std::move(used);
-  constants_lookup_.clear();
-  for (std::size_t k = 0; k < constants_.size(); ++k)
-    constants_lookup_.emplace(bits_of(constants_[k]), static_cast<ConstantsIndex>(k));
   last_constants_ = 0;
 }
 
@@ -157,7 +149,6 @@ void ContactTable::assign(const std::vector<ContactRecord> &contacts, std::vecto
     throw std::invalid_argument("contact table: " + std::to_string(law_states.size()) + " law states for " +
                                 std::to_string(contacts.size()) + " contacts");
   constants_.clear();
-  constants_lookup_.clear();
   contacts_.clear();
   contacts_.reserve(contacts.size());
   for (const ContactRecord &r : contacts)

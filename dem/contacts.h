@@ -3,8 +3,9 @@
 // The table holds the neighbour candidates plus every pair that is touching
 // or bonded, sorted by (first, second).  Each entry carries the index of its
 // pair constants (ContactParams, fixed at creation) in the table's list of
-// distinct constants (a sample of one kind of ball has a single set: four
-// bytes per entry instead of 24), its bond and its history (ContactState).  The contact law's own history (LawState, contact.h) lives
+// them (a sample of one kind of ball has a single set: four bytes per entry
+// instead of 24), whether it is bonded, its bond and its history
+// (ContactState).  The contact law's own history (LawState, contact.h) lives
 // in a second array, parallel to the entries: structure of arrays, so that a
 // law without such history (the linear law) never loads it in its contact
 // pass.  When the neighbour list is rebuilt the table merges the new
@@ -24,9 +25,7 @@
 #include "dem/contact.h"
 #include "dem/neighbors.h"
 
-#include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace dem
@@ -106,8 +105,9 @@ public:
   const ContactParams &params(const Contact &c) const { return constants_[c.constants]; }
   /// Gives an entry of this table other pair constants.
   void set_params(Contact &c, const ContactParams &params) { c.constants = constants_index(params); }
-  /// The distinct pair constants the entries index (and perhaps some that
-  /// no entry uses any more; a rebuild drops them once they outnumber the
+  /// The pair constants the entries index: each set once while there are
+  /// few (a sample of one kind of ball has one), and perhaps some that no
+  /// entry uses any more (a rebuild drops them once they outnumber the
   /// entries).
   const std::vector<ContactParams> &distinct_params() const { return constants_; }
 
@@ -161,21 +161,14 @@ public:
 private:
   void rebuild_adjacency(Index particles);
   void retire(const Contact &c);
-  /// Index of these constants (bit for bit) in constants_, added if new.
+  /// Index of these constants (bit for bit) in constants_, added if new
+  /// (see contacts.cpp for when a set may be listed twice).
   ConstantsIndex constants_index(const ContactParams &params);
   /// Drops the constants no entry uses and renumbers the entries.
   void compact_constants();
 
-  /// The bits of a set of pair constants: equal keys, identical constants.
-  using ConstantsKey = std::array<std::uint64_t, 3>;
-  struct ConstantsKeyHash
-  {
-    std::size_t operator()(const ConstantsKey &k) const;
-  };
-
   std::vector<Contact> contacts_;
   std::vector<ContactParams> constants_;
-  std::unordered_map<ConstantsKey, ConstantsIndex, ConstantsKeyHash> constants_lookup_;
   ConstantsIndex last_constants_ = 0; ///< the last index found: most entries share one set
   std::vector<LawState> law_states_;
   std::vector<EntryIndex> first_start_, second_start_, second_list_;

@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -114,4 +115,38 @@ TEST_CASE("a sample file of an unknown contact law is refused, naming it", "[sam
   const std::string path = temp_path("unknown_law.json");
   std::ofstream(path) << doc.dump();
   CHECK_THROWS_WITH(verify::read_sample(path), Catch::Contains("no_such_law"));
+}
+
+TEST_CASE("a touching contact needs its unit normal; one that carries no force keeps none", "[sample]")
+{
+  std::ifstream in(DEMVV_TEST_DATA "/sample_v1.json");
+  const nlohmann::json original = nlohmann::json::parse(in);
+  const nlohmann::json &columns = original["contacts"]["columns"];
+  const auto column = [&](const char *name) {
+    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  const std::size_t touching = column("touching"), nx = column("nx"), ny = column("ny"), nz = column("nz");
+  const nlohmann::json &rows = original["contacts"]["rows"];
+  const auto touching_row = std::find_if(rows.begin(), rows.end(), [&](const nlohmann::json &r) { return r[touching] == 1; });
+  REQUIRE(touching_row != rows.end());
+  const std::size_t r = static_cast<std::size_t>(touching_row - rows.begin());
+
+  // A touching contact without a normal is refused with the one-line error.
+  nlohmann::json doc = original;
+  for (std::size_t k : {nx, ny, nz})
+    doc["contacts"]["rows"][r][k] = 0.0;
+  const std::string broken = temp_path("touching_without_normal.json");
+  std::ofstream(broken) << doc.dump();
+  CHECK_THROWS_WITH(verify::read_sample(broken), Catch::Contains("contacts.rows[" + std::to_string(r) + "].nx") &&
+                                                   Catch::Contains("unit normal"));
+
+  // A contact that is not touching loads with a zero normal, whatever the
+  // file says (earlier builds kept the last normal of a bond broken apart).
+  doc = original;
+  doc["contacts"]["rows"][r][touching] = 0;
+  const std::string apart = temp_path("apart_with_normal.json");
+  std::ofstream(apart) << doc.dump();
+  const verify::SampleFile loaded = verify::read_sample(apart);
+  CHECK_FALSE(loaded.snapshot.contacts[r].state.touching());
+  CHECK(loaded.snapshot.contacts[r].state.normal == dem::Vec3::Zero());
 }
