@@ -192,7 +192,8 @@ public:
     {
       const ContactState &s = table[c].state;
       if (s.touching())
-        e += law_.stored_energy(table.params(table[c]), s.normal_force, s.shear_force, history_of(table.law_states(), c));
+        e += law_.stored_energy(table.params(table[c]), s.normal_force, s.shear_force,
+                                history_of(table.law_states(), c));
     }
     return e;
   }

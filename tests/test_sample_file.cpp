@@ -127,7 +127,8 @@ TEST_CASE("a touching contact needs its unit normal; one that carries no force k
   };
   const std::size_t touching = column("touching"), nx = column("nx"), ny = column("ny"), nz = column("nz");
   const nlohmann::json &rows = original["contacts"]["rows"];
-  const auto touching_row = std::find_if(rows.begin(), rows.end(), [&](const nlohmann::json &r) { return r[touching] == 1; });
+  const auto touching_row =
+    std::find_if(rows.begin(), rows.end(), [&](const nlohmann::json &row) { return row[touching] == 1; });
   REQUIRE(touching_row != rows.end());
   const std::size_t r = static_cast<std::size_t>(touching_row - rows.begin());
 
