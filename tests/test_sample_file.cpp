@@ -117,7 +117,7 @@ TEST_CASE("a sample file of an unknown contact law is refused, naming it", "[sam
   CHECK_THROWS_WITH(verify::read_sample(path), Catch::Contains("no_such_law"));
 }
 
-TEST_CASE("a touching contact needs its unit normal; one that carries no force keeps none", "[sample]")
+TEST_CASE("a touching contact needs its unit normal, one that carries no force keeps none", "[sample]")
 {
   std::ifstream in(DEMVV_TEST_DATA "/sample_v1.json");
   const nlohmann::json original = nlohmann::json::parse(in);
