@@ -204,7 +204,8 @@ public:
     if (!touching)
       s.normal.setZero();
     else if (!s.touching())
-      fail(cell_key(table, r, state_columns[3]), row[at + 3], "a touching contact's unit normal, not all zero");
+      fail(cell_key(table, r, state_columns[3]), row[at + 3],
+           "expected a touching contact's unit normal, not all zero");
     s.shear_force = {v(6), v(7), v(8)};
     s.friction_work = v(9);
     s.bond_energy = v(10);
