@@ -37,8 +37,9 @@ ConstantsIndex ContactTable::constants_index(const ContactParams &params)
     for (std::size_t k = 0; k < constants_.size(); ++k)
       if (same_bits(constants_[k], params))
         return last_constants_ = static_cast<ConstantsIndex>(k);
-  if (constants_.size() > std::numeric_limits<ConstantsIndex>::max())
-    throw std::length_error("contact table: more than 2^32 sets of pair constants");
+  // The largest index stays free: compaction marks unused sets with it.
+  if (constants_.size() >= std::numeric_limits<ConstantsIndex>::max())
+    throw std::length_error("contact table: more than 2^32 - 1 sets of pair constants");
   last_constants_ = static_cast<ConstantsIndex>(constants_.size());
   constants_.push_back(params);
   return last_constants_;
