@@ -7,15 +7,26 @@
 //                          update of every ball
 //   rebuild/BALLS          Simulation::refresh_contacts: the neighbour cells
 //                          and the contact table's merge
+//   force_pass_packed/BALLS  the force pass (linear law) on a packed
+//                          sample instead of the lattice
 //
 // Each works on the speed benchmark's bonded sc lattice cylinder
 // (dem/speed_bench.h) of about BALLS balls after 400 steps of its
 // compression, so that the contacts carry force as in a run; the kernel is
 // then repeated on that state (integrate runs the steps on, with each
-// step's force pass outside the timing).  Threads: OpenMP's choice
-// (OMP_NUM_THREADS fixes it).  Rates are given per ball (particle_steps, per
-// second) and per contact entry (entries).  CI builds the binary and runs it
-// once, briefly, as a smoke test; it never times it.
+// step's force pass outside the timing).  On the lattice every pair is in
+// compression and no candidate is apart, so each branch of the contact
+// step goes one way; the packed sample is chapter 5's preparation
+// (dem/prep_packing.h) with the settings of the thesis sample p01 (cases/)
+// at the given ball count, compressed the same way: bonded pairs in
+// tension and in compression and candidates apart, whose shares its
+// counters give (tension: of the bonded pairs; apart: of the entries).
+// Preparing it takes about a minute at 6000 balls, once per process.
+// Threads: OpenMP's choice (OMP_NUM_THREADS fixes it).  Rates are given
+// per ball (particle_steps, per second) and per contact entry (entries).
+// CI builds the binary and runs it once, briefly, as a smoke test; it
+// never times it.
+#include "dem/prep_packing.h"
 #include "dem/speed_bench.h"
 
 #include <benchmark/benchmark.h>
@@ -47,6 +58,27 @@ dem::Simulation &specimen(const std::string &law, double balls)
   return *sim;
 }
 
+/// The packed sample of about `balls` balls, prepared and compressed once
+/// per process.
+dem::Simulation &packed_specimen(double balls)
+{
+  static std::map<double, dem::PreparedSample> built;
+  auto it = built.find(balls);
+  if (it == built.end())
+  {
+    dem::PackingSettings settings;
+    settings.particles = static_cast<long>(balls);
+    settings.ball = dem::bench_ball();
+    settings.walls = dem::bench_platen();
+    settings.bonds.normal_strength = settings.bonds.shear_strength = 31.3; // N, the thesis sample's
+    dem::PreparedSample sample = dem::prepare_sample(settings);
+    const dem::Specimen &cell = sample.cell;
+    dem::time_compression(*sample.sim, cell.bottom, cell.top, cell.area(), 200, 1);
+    it = built.emplace(balls, std::move(sample)).first;
+  }
+  return *it->second.sim;
+}
+
 void report_rates(benchmark::State &state, const dem::Simulation &sim)
 {
   const double iterations = static_cast<double>(state.iterations());
@@ -76,6 +108,23 @@ void integrate(benchmark::State &state)
   report_rates(state, sim);
 }
 
+void force_pass_packed(benchmark::State &state)
+{
+  dem::Simulation &sim = packed_specimen(static_cast<double>(state.range(0)));
+  for (auto _ : state)
+    sim.compute_forces();
+  report_rates(state, sim);
+  double bonded = 0, stretched = 0, apart = 0;
+  for (const dem::Contact &c : sim.contacts().entries())
+  {
+    bonded += c.bonded;
+    stretched += c.bonded && c.state.overlap < 0;
+    apart += !c.state.touching();
+  }
+  state.counters["tension"] = bonded > 0 ? stretched / bonded : 0.0;
+  state.counters["apart"] = apart / static_cast<double>(sim.contacts().size());
+}
+
 void rebuild(benchmark::State &state)
 {
   dem::Simulation &sim = specimen("linear", static_cast<double>(state.range(0)));
@@ -92,5 +141,6 @@ BENCHMARK_CAPTURE(force_pass, modified_burgers, std::string("modified_burgers"))
   ->Unit(benchmark::kMicrosecond);
 BENCHMARK(integrate)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(rebuild)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(force_pass_packed)->Arg(500)->Arg(6000)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();
