@@ -87,12 +87,17 @@ void report_rates(benchmark::State &state, const dem::Simulation &sim)
   state.counters["entries"] = benchmark::Counter(iterations * sim.contacts().size(), benchmark::Counter::kIsRate);
 }
 
-void force_pass(benchmark::State &state, const std::string &law)
+/// Times the force pass of `sim`, repeated at its balls' positions and velocities.
+void time_force_pass(benchmark::State &state, dem::Simulation &sim)
 {
-  dem::Simulation &sim = specimen(law, static_cast<double>(state.range(0)));
   for (auto _ : state)
     sim.compute_forces();
   report_rates(state, sim);
+}
+
+void force_pass(benchmark::State &state, const std::string &law)
+{
+  time_force_pass(state, specimen(law, static_cast<double>(state.range(0))));
 }
 
 void integrate(benchmark::State &state)
@@ -111,9 +116,7 @@ void integrate(benchmark::State &state)
 void force_pass_packed(benchmark::State &state)
 {
   dem::Simulation &sim = packed_specimen(static_cast<double>(state.range(0)));
-  for (auto _ : state)
-    sim.compute_forces();
-  report_rates(state, sim);
+  time_force_pass(state, sim);
   double bonded = 0, stretched = 0, apart = 0;
   for (const dem::Contact &c : sim.contacts().entries())
   {
