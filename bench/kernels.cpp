@@ -7,8 +7,8 @@
 //                          update of every ball
 //   rebuild/BALLS          Simulation::refresh_contacts: the neighbour cells
 //                          and the contact table's merge
-//   force_pass_packed/BALLS  the force pass (linear law) on a packed
-//                          sample instead of the lattice
+//   force_pass_packed/LAW/BALLS  the force pass on a packed sample
+//                          instead of the lattice
 //
 // Each works on the speed benchmark's bonded sc lattice cylinder
 // (dem/speed_bench.h) of about BALLS balls after 400 steps of its
@@ -18,10 +18,11 @@
 // compression and no candidate is apart, so each branch of the contact
 // step goes one way; the packed sample is chapter 5's preparation
 // (dem/prep_packing.h) with the settings of the thesis sample p01 (cases/)
-// at the given ball count, compressed the same way: bonded pairs in
-// tension and in compression and candidates apart, whose shares its
-// counters give (tension: of the bonded pairs; apart: of the entries).
-// Preparing it takes about a minute at 6000 balls, once per process.
+// at the given ball count, continued with the law and compressed the same
+// way: bonded pairs in tension and in compression and candidates apart,
+// whose shares its counters give (tension: of the bonded pairs; apart: of
+// the entries).  Preparing it takes about a minute at 6000 balls, once
+// per process and size whatever the laws.
 // Threads: OpenMP's choice (OMP_NUM_THREADS fixes it).  Rates are given
 // per ball (particle_steps, per second) and per contact entry (entries).
 // CI builds the binary and runs it once, briefly, as a smoke test; it
@@ -58,25 +59,39 @@ dem::Simulation &specimen(const std::string &law, double balls)
   return *sim;
 }
 
-/// The packed sample of about `balls` balls, prepared and compressed once
-/// per process.
-dem::Simulation &packed_specimen(double balls)
+/// The packed sample of about `balls` balls, prepared once per process.
+const dem::PreparedSample &packed_sample(double balls)
 {
-  static std::map<double, dem::PreparedSample> built;
-  auto it = built.find(balls);
-  if (it == built.end())
+  static std::map<double, dem::PreparedSample> prepared;
+  auto it = prepared.find(balls);
+  if (it == prepared.end())
   {
     dem::PackingSettings settings;
     settings.particles = static_cast<long>(balls);
     settings.ball = dem::bench_ball();
     settings.walls = dem::bench_platen();
     settings.bonds.normal_strength = settings.bonds.shear_strength = 31.3; // N, the thesis sample's
-    dem::PreparedSample sample = dem::prepare_sample(settings);
-    const dem::Specimen &cell = sample.cell;
-    dem::time_compression(*sample.sim, cell.bottom, cell.top, cell.area(), 200, 1);
-    it = built.emplace(balls, std::move(sample)).first;
+    it = prepared.emplace(balls, dem::prepare_sample(settings)).first;
   }
-  return *it->second.sim;
+  return it->second;
+}
+
+/// The packed sample continued with the law `law` and compressed, built
+/// once per process.
+dem::Simulation &packed_specimen(const std::string &law, double balls)
+{
+  static std::map<std::pair<std::string, double>, std::unique_ptr<dem::Simulation>> built;
+  std::unique_ptr<dem::Simulation> &sim = built[{law, balls}];
+  if (!sim)
+  {
+    const dem::PreparedSample &sample = packed_sample(balls);
+    dem::SimulationSettings settings;
+    settings.local_damping = 0.7;
+    sim = std::make_unique<dem::Simulation>(sample.sim->snapshot(), dem::make_contact_model(law, {}), settings);
+    const dem::Specimen &cell = sample.cell;
+    dem::time_compression(*sim, cell.bottom, cell.top, cell.area(), 200, 1);
+  }
+  return *sim;
 }
 
 void report_rates(benchmark::State &state, const dem::Simulation &sim)
@@ -113,9 +128,9 @@ void integrate(benchmark::State &state)
   report_rates(state, sim);
 }
 
-void force_pass_packed(benchmark::State &state)
+void force_pass_packed(benchmark::State &state, const std::string &law)
 {
-  dem::Simulation &sim = packed_specimen(static_cast<double>(state.range(0)));
+  dem::Simulation &sim = packed_specimen(law, static_cast<double>(state.range(0)));
   time_force_pass(state, sim);
   double bonded = 0, stretched = 0, apart = 0;
   for (const dem::Contact &c : sim.contacts().entries())
@@ -144,6 +159,13 @@ BENCHMARK_CAPTURE(force_pass, modified_burgers, std::string("modified_burgers"))
   ->Unit(benchmark::kMicrosecond);
 BENCHMARK(integrate)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(rebuild)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(force_pass_packed)->Arg(500)->Arg(6000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(force_pass_packed, linear, std::string("linear"))
+  ->Arg(500)
+  ->Arg(6000)
+  ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(force_pass_packed, burgers, std::string("burgers"))->Arg(6000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(force_pass_packed, modified_burgers, std::string("modified_burgers"))
+  ->Arg(6000)
+  ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();
