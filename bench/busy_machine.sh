@@ -1,9 +1,9 @@
 #!/bin/sh
 # Busy-machine benchmark: demvv bench on 1 and on all cores, idle and beside
-# one competing CPU-bound process (a shell loop), with OpenMP's waits
-# as demvv sets them (passive), and active (libgomp's default);
-# then the thread count demvv picks by default; then the cost
-# of each contact law on one thread.
+# one competing CPU-bound process (a shell loop), with OpenMP's waits as
+# libgomp has them by default (spin about 300 000 times, then sleep),
+# passive (sleep at once) and active (spin); then the thread count demvv
+# picks by default; then the cost of each contact law on one thread.
 #
 # usage: bench/busy_machine.sh [DEMVV] [STEPS]     (from the repository root)
 # Prints one line per configuration: particle-steps/s, best of 3.
@@ -11,9 +11,9 @@ set -eu
 demvv=${1:-build/demvv}
 steps=${2:-1000}
 cores=$(nproc)
-run() { # LABEL THREADS|default WAITS (demvv or active)
+run() { # LABEL THREADS|default WAITS (default, passive or active)
   if [ "$2" = default ]; then flag=""; else flag="--threads $2"; fi
-  if [ "$3" = demvv ]; then waits=""; else waits="OMP_WAIT_POLICY=$3"; fi
+  if [ "$3" = default ]; then waits=""; else waits="OMP_WAIT_POLICY=$3"; fi
   line=$(env $waits "$demvv" bench --steps "$steps" --repeat 3 $flag 2>&1 | tail -1)
   rate=$(echo "$line" | sed -n 's/.*particle-steps\/s \([0-9.e+]*\),.*/\1/p')
   used=$(echo "$line" | sed -n 's/.*threads \([0-9]*\) .*/\1/p')
@@ -22,10 +22,11 @@ run() { # LABEL THREADS|default WAITS (demvv or active)
 table() { # LABEL
   for t in $(printf '%s\n' 1 $((cores - 1)) "$cores" | sort -nu); do
     [ "$t" -ge 1 ] || continue
-    run "$1" "$t" demvv
+    run "$1" "$t" default
+    run "$1" "$t" passive
     run "$1" "$t" active
   done
-  run "$1" default demvv
+  run "$1" default default
 }
 table "idle"
 sh -c 'while :; do :; done' &
@@ -38,5 +39,5 @@ trap - EXIT
 for law in linear burgers modified_burgers; do
   rate=$("$demvv" bench --steps "$steps" --repeat 3 --threads 1 --law "$law" 2>&1 |
          sed -n 's/.*particle-steps\/s \([0-9.e+]*\),.*/\1/p')
-  printf '%-34s %-8s %2s threads  %-7s %s particle-steps/s\n' "idle, law $law" 1 1 demvv "$rate"
+  printf '%-34s %-8s %2s threads  %-7s %s particle-steps/s\n' "idle, law $law" 1 1 default "$rate"
 done
