@@ -215,6 +215,18 @@ TEST_CASE("the default thread count leaves out a core another task is running on
   CHECK(seen <= cores - 1);
 }
 
+TEST_CASE("a count demvv chose for a sweep's members is governed up to their share, a count given is kept",
+          "[run][threads]")
+{
+  verify::RunOptions given{"", 2};
+  CHECK_FALSE(verify::threads_are_ours(given));
+  verify::RunOptions share{"", 2};
+  share.most_threads = 3;
+  CHECK(verify::threads_are_ours(share));
+  CHECK(verify::thread_ceiling(share) == 3);
+  CHECK(verify::thread_ceiling(given) == omp_get_num_procs());
+}
+
 TEST_CASE("the thread governor gives up a thread a busy machine holds back and keeps both on an idle one",
           "[run][threads]")
 {

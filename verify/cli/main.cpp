@@ -95,7 +95,7 @@ int main(int argc, char **argv)
   sweep_cmd->add_flag("--replace", sweep.settings.replace, "Start the sweep in --out over (only a sweep directory is emptied)");
   sweep_cmd->add_option("--threads", sweep.settings.threads,
                         "OpenMP threads per member (default: OMP_NUM_THREADS, else the idle cores, shared among "
-                        "MPI ranks)")
+                        "MPI ranks and changed during a DEM member as the load does)")
     ->check(CLI::Range(1, 1024));
   bool sweep_quiet = false;
   sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");

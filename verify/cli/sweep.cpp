@@ -573,13 +573,24 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
                             "it, or --replace to start it over");
 }
 
-/// Threads for each member: --threads, else OMP_NUM_THREADS, else the
-/// cores shared out among the ranks of this machine.
-int sweep_threads(int requested, int ranks)
+/// Threads for each member (RunOptions::threads and most_threads).
+struct SweepThreads
 {
-  if (requested > 0 || std::getenv("OMP_NUM_THREADS") || ranks == 1)
-    return apply_threads({"", requested});
-  return apply_threads({"", std::max(1, omp_get_num_procs() / ranks)});
+  int count = 1;
+  int most = 0; ///< > 0: demvv's choice, which each member's run may change up to this many
+};
+
+/// --threads, else OMP_NUM_THREADS, both kept as given; else demvv's
+/// choice, governed during each member's run: one rank starts on the idle
+/// cores and may use them all, several share the cores out.
+SweepThreads sweep_threads(int requested, int ranks)
+{
+  if (requested > 0 || std::getenv("OMP_NUM_THREADS"))
+    return {apply_threads({"", requested}), 0};
+  if (ranks == 1)
+    return {apply_threads({}), omp_get_num_procs()};
+  const int share = std::max(1, omp_get_num_procs() / ranks);
+  return {apply_threads({"", share}), share};
 }
 } // namespace
 
@@ -634,7 +645,8 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
 
   std::vector<Member> members = plan_members(plan);
   on_rank_zero_for_all(true, [&] { claim_sweep_directory(o.out_dir, o.replace, members); });
-  const int threads = sweep_threads(o.threads, mpi.ranks);
+  const SweepThreads member_threads = sweep_threads(o.threads, mpi.ranks);
+  const int threads = member_threads.count;
   prepare_samples(members, int(mpi.rank), int(mpi.ranks), o.progress);
   resolve_members(members, plan.base_deck, fnv1a_hex(base.resolved()));
 
@@ -686,8 +698,9 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
     if (refusal.empty())
       try
       {
-        const RunStatus status =
-          kind->run(Deck::from_file(plan.base_deck, m.overrides), {dir, threads, false, false, 0, false});
+        RunOptions member_options{dir, threads, false};
+        member_options.most_threads = member_threads.most;
+        const RunStatus status = kind->run(Deck::from_file(plan.base_deck, m.overrides), member_options);
         interrupted = status.interrupted_by;
         if (status.fault)
           std::cerr << "demvv: member " << m.label << ": " << status.diagnostic() << "\n";

@@ -382,7 +382,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   const long steps_at_start = sim.steps();
   Progress progress(protocol.label(), options.progress, std::clamp(protocol.fraction_done(sim), 0.0, 1.0));
   StopSignals signals;
-  ThreadGovernor governor(omp_get_max_threads(), omp_get_num_procs(), threads_are_ours(options));
+  ThreadGovernor governor(omp_get_max_threads(), thread_ceiling(options), threads_are_ours(options));
   const auto start = std::chrono::steady_clock::now();
   auto last_checkpoint = start;
   try

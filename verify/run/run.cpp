@@ -200,7 +200,15 @@ int idle_cores()
   return std::clamp(cores - (runnable - 1), 1, cores);
 }
 
-bool threads_are_ours(const RunOptions &options) { return options.threads <= 0 && !std::getenv("OMP_NUM_THREADS"); }
+bool threads_are_ours(const RunOptions &options)
+{
+  return options.most_threads > 0 || (options.threads <= 0 && !std::getenv("OMP_NUM_THREADS"));
+}
+
+int thread_ceiling(const RunOptions &options)
+{
+  return options.most_threads > 0 ? options.most_threads : omp_get_num_procs();
+}
 
 int apply_threads(const RunOptions &options)
 {

@@ -34,6 +34,9 @@ struct RunOptions
   bool resume = false;   ///< continue the run in out_dir from its checkpoint
   long pause_after = 0;  ///< > 0: stop after this many steps as an interruption would (batch-queue jobs)
   bool replace = false;  ///< demvv run --replace: a non-empty out_dir holding a run is replaced whole
+  /// > 0: demvv chose `threads` itself (a sweep's share of the cores), and
+  /// a DEM run may move between one thread and this many (ThreadGovernor).
+  int most_threads = 0;
 };
 
 struct RunStatus
@@ -147,9 +150,12 @@ int idle_cores();
 /// OMP_NUM_THREADS when set, else idle_cores().
 int apply_threads(const RunOptions &options);
 
-/// Whether demvv chose the thread count (neither --threads nor
-/// OMP_NUM_THREADS), and so may change it while a run goes.
+/// Whether demvv chose the thread count (a sweep's share, or neither
+/// --threads nor OMP_NUM_THREADS), and so may change it while a run goes.
 bool threads_are_ours(const RunOptions &options);
+/// The most threads a run whose count is ours may use: the sweep's share,
+/// else every core.
+int thread_ceiling(const RunOptions &options);
 
 /// The thread count of a DEM run while it goes.  idle_cores() sees the load
 /// at the start only; a process that starts later holds back every step of
