@@ -43,10 +43,6 @@
 
 namespace dem
 {
-/// Revision of the procedure: raise it whenever a change alters the samples
-/// it makes (cached samples are keyed by deck and revision).
-inline constexpr int preparation_revision = 2;
-
 struct PackingSettings
 {
   long particles = 0;                ///< N; 0: from eq. 5.1 with the cell diameter and height

@@ -93,7 +93,7 @@ TEST_CASE("a run directory holds the resolved deck and provenance and a complete
     CHECK(fs::exists(dir / f));
   const auto summary = nlohmann::json::parse(verify::read_file((dir / "summary.json").string()));
   CHECK(summary["status"]["state"] == "completed");
-  for (const char *k : {"version", "git_sha", "compiler", "threads", "seed", "deck_fnv1a64"})
+  for (const char *k : {"version", "git_sha", "sources_sha256", "compiler", "threads", "seed", "deck_fnv1a64"})
     CHECK(summary["provenance"].contains(k));
   CHECK(summary["sample"]["description"].get<std::string>().find("verification stand-in") != std::string::npos);
   // The resolved deck reads back as the deck that was run.

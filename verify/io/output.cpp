@@ -1,6 +1,7 @@
 #include "verify/io/output.h"
 
 #include "build_info.h"
+#include "sources_sha256.h" // here alone: it changes with every edit of the sources
 
 #include <fcntl.h>
 #include <omp.h>
@@ -213,6 +214,7 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
   return {{"program", "demvv"},
           {"version", build_info::version},
           {"git_sha", build_info::git_sha},
+          {"sources_sha256", build_info::sources_sha256},
           {"compiler", build_info::compiler},
           {"build_type", build_info::build_type},
           {"dem_flags", build_info::dem_flags},
@@ -222,5 +224,11 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
           {"deck_fnv1a64", fnv1a_hex(deck_text)},
           {"started_utc", when},
           {"units", "SI (m, kg, s, N, Pa, J); compression positive"}};
+}
+
+std::string build_identity()
+{
+  return std::string(build_info::sources_sha256) + " " + build_info::compiler + " " + build_info::build_type + " " +
+         build_info::dem_flags;
 }
 } // namespace verify

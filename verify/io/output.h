@@ -85,8 +85,15 @@ private:
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-/// Provenance of a run: version, git SHA, compiler, flags, threads, seed, input.
+/// Provenance of a run: version, git SHA, the sources' hash, compiler, flags,
+/// threads, seed, input.
 nlohmann::json provenance(int threads, long long seed, const std::string &deck_text);
+
+/// What makes this build's results what they are: the hash of the engine's
+/// and the harness's sources, the compiler, the build type and the engine's
+/// flags.  Part of a cached sample's key, so that a sample prepared by
+/// another build (other sources, other arithmetic) is never served.
+std::string build_identity();
 
 /// FNV-1a 64-bit hash of a text, as 16 hex digits (identifies inputs; not cryptographic).
 std::string fnv1a_hex(const std::string &text);

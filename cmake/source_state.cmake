@@ -1,0 +1,42 @@
+# Writes, in the folder OUT, what the sources of this build are:
+#   git_sha.h         the current git SHA (suffix -dirty if tracked files are
+#                     modified), for provenance;
+#   sources_sha256.h  the SHA-256 of the sources that make demvv's results,
+#                     the engine (dem/) and the harness that drives it
+#                     (verify/), every .h, .cpp and .in file by its path and
+#                     contents, git or not: it keys the sample cache, so a
+#                     sample prepared by another build is never served.
+# Run at every build, so neither is ever stale; a file is only rewritten when
+# its content changes, so nothing rebuilds needlessly.
+function(write_if_changed path content)
+  if(EXISTS ${path})
+    file(READ ${path} old)
+  endif()
+  if(NOT "${old}" STREQUAL "${content}")
+    file(WRITE ${path} "${content}")
+  endif()
+endfunction()
+
+execute_process(COMMAND git rev-parse --short=12 HEAD
+  WORKING_DIRECTORY ${SRC} OUTPUT_VARIABLE sha OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+execute_process(COMMAND git status --porcelain --untracked-files=no
+  WORKING_DIRECTORY ${SRC} OUTPUT_VARIABLE dirty OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+if(NOT sha)
+  set(sha "unknown")
+elseif(dirty)
+  set(sha "${sha}-dirty")
+endif()
+write_if_changed(${OUT}/git_sha.h
+  "#pragma once\nnamespace build_info { inline constexpr const char *git_sha = \"${sha}\"; }\n")
+
+file(GLOB_RECURSE sources RELATIVE ${SRC} ${SRC}/dem/*.h ${SRC}/dem/*.cpp
+     ${SRC}/verify/*.h ${SRC}/verify/*.cpp ${SRC}/verify/*.in)
+list(SORT sources)
+set(listing "")
+foreach(f IN LISTS sources)
+  file(SHA256 ${SRC}/${f} h)
+  string(APPEND listing "${h}  ${f}\n")
+endforeach()
+string(SHA256 hash "${listing}")
+write_if_changed(${OUT}/sources_sha256.h
+  "#pragma once\nnamespace build_info { inline constexpr const char *sources_sha256 = \"${hash}\"; }\n")
