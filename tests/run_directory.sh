@@ -5,6 +5,7 @@
 # still continues in its own directory; a run directory's deck.prm runs
 # again from any folder with the same results; a prepare deck's sample is
 # cached beside the deck whatever the current folder (or in $DEMVV_CACHE);
+# --threads is a ceiling, OMP_NUM_THREADS an exact count;
 # under MPI every rank takes rank 0's verdict (no hang, no rank left behind).
 # Usage: run_directory.sh DEMVV CASES_DIR [MPIRUN]
 set -u
@@ -24,7 +25,7 @@ import json, sys
 def numbers(j):
     if isinstance(j, dict):
         return {k: numbers(v) for k, v in j.items()
-                if k not in ("provenance", "wall_seconds", "particle_steps_per_second")}
+                if k not in ("provenance", "wall_seconds", "particle_steps_per_second", "threads")}
     if isinstance(j, list):
         return [numbers(v) for v in j]
     return None if isinstance(j, str) else j
@@ -101,6 +102,17 @@ same_results "$work/b/u/summary.json" "$work/a/u/summary.json" && same_results "
   fail "runs on the cached sample gave other results"
 (cd "$work/b" && DEMVV_CACHE="$work/cache" "$demvv" run ../decks/test.prm --out v --threads 1 2>"$work/err_d") || fail "the DEMVV_CACHE run failed"
 grep -q "^prepare small" "$work/err_d" && [ -f "$work/cache"/small-*/sample.json ] || fail "DEMVV_CACHE did not hold the cache"
+
+# --threads N is the most a run may use, its count governed below it;
+# OMP_NUM_THREADS alone fixes the count (summary.json says which).
+"$demvv" run "$impact" --out "$work/t2" --quiet --threads 2 || fail "the --threads 2 run failed"
+OMP_NUM_THREADS=2 "$demvv" run "$impact" --out "$work/e2" --quiet || fail "the OMP_NUM_THREADS=2 run failed"
+python3 - "$work/t2/summary.json" "$work/e2/summary.json" <<'EOF' || fail "the thread counts are not as asked"
+import json, sys
+ceiling, exact = (json.load(open(p))["status"]["threads"] for p in sys.argv[1:3])
+assert ceiling["governed"] and ceiling["most"] == 2 and 1 <= ceiling["at_end"] <= 2, ceiling
+assert not exact["governed"] and exact["at_end"] == 2 and exact["changes"] == 0 and "most" not in exact, exact
+EOF
 
 # Under MPI rank 0 decides for every rank: a refusal ends every rank with
 # exit code 2 (no hang), a failed check loses nothing, a replacement works.

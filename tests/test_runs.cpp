@@ -215,16 +215,21 @@ TEST_CASE("the default thread count leaves out a core another task is running on
   CHECK(seen <= cores - 1);
 }
 
-TEST_CASE("a count demvv chose for a sweep's members is governed up to their share, a count given is kept",
+TEST_CASE("a count with a ceiling (--threads, a sweep's share) is governed up to it, an exact count is kept",
           "[run][threads]")
 {
-  verify::RunOptions given{"", 2};
-  CHECK_FALSE(verify::threads_are_ours(given));
+  verify::RunOptions exact{"", 2};
+  CHECK_FALSE(verify::threads_are_ours(exact));
   verify::RunOptions share{"", 2};
   share.most_threads = 3;
   CHECK(verify::threads_are_ours(share));
   CHECK(verify::thread_ceiling(share) == 3);
-  CHECK(verify::thread_ceiling(given) == omp_get_num_procs());
+  CHECK(verify::thread_ceiling(exact) == omp_get_num_procs());
+  // demvv run --threads N: starts on N, never more.
+  verify::RunOptions at_most{"", 2};
+  at_most.most_threads = 2;
+  CHECK(verify::threads_are_ours(at_most));
+  CHECK(verify::thread_ceiling(at_most) == 2);
 }
 
 TEST_CASE("the thread governor gives up a thread a busy machine holds back and keeps both on an idle one",

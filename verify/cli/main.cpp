@@ -66,7 +66,10 @@ int main(int argc, char **argv)
                 "Replace the run in a non-empty run directory whole (its old files removed once the deck is read "
                 "and checked)");
   run->add_option("--set", overrides, "Override a deck entry: SECTION/KEY=VALUE (repeatable)");
-  run->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS, else the cores no other process is busy on)")
+  run->add_option("--threads", threads,
+                  "OpenMP threads, at most: a DEM run starts on N and moves to fewer while fewer run faster (a busy "
+                  "machine); results never depend on it (default: OMP_NUM_THREADS, kept exactly, else the cores no "
+                  "other process is busy on, then up to every core)")
     ->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "No progress line (it is shown only when standard output is a terminal)");
   run->add_option("--resume", resume_dir,
@@ -94,8 +97,8 @@ int main(int argc, char **argv)
   sweep_cmd->add_option("--out", sweep.settings.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")->required();
   sweep_cmd->add_flag("--replace", sweep.settings.replace, "Start the sweep in --out over (only a sweep directory is emptied)");
   sweep_cmd->add_option("--threads", sweep.settings.threads,
-                        "OpenMP threads per member (default: OMP_NUM_THREADS, else the idle cores, shared among "
-                        "MPI ranks and changed during a DEM member as the load does)")
+                        "OpenMP threads per member, at most, changed during a DEM member as the load does (default: "
+                        "OMP_NUM_THREADS, kept exactly, else the idle cores, shared among MPI ranks)")
     ->check(CLI::Range(1, 1024));
   bool sweep_quiet = false;
   sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");
@@ -138,8 +141,8 @@ int main(int argc, char **argv)
   calibrate_cmd->add_flag("--replace", calibration.settings.replace,
                           "Start the calibration in --out over (only a calibration directory is emptied)");
   calibrate_cmd->add_option("--threads", calibration.settings.threads,
-                            "OpenMP threads per run (default: OMP_NUM_THREADS, else the idle cores, shared among "
-                            "MPI ranks)")
+                            "OpenMP threads per run, at most, changed during a run as the load does (default: "
+                            "OMP_NUM_THREADS, kept exactly, else the idle cores, shared among MPI ranks)")
     ->check(CLI::Range(1, 1024));
   bool calibrate_quiet = false;
   calibrate_cmd->add_flag("--quiet", calibrate_quiet, "No progress lines (the evaluations and their members)");
@@ -210,7 +213,7 @@ int main(int argc, char **argv)
                                 "of them");
       return verify::command_run(deck_path, overrides,
                                  {resume_dir.empty() ? out_dir : resume_dir, threads, !quiet, !resume_dir.empty(),
-                                  pause_after, replace});
+                                  pause_after, replace, threads});
     }
     if (sweep_cmd->parsed())
     {

@@ -580,13 +580,16 @@ struct SweepThreads
   int most = 0; ///< > 0: demvv's choice, which each member's run may change up to this many
 };
 
-/// --threads, else OMP_NUM_THREADS, both kept as given; else demvv's
-/// choice, governed during each member's run: one rank starts on the idle
-/// cores and may use them all, several share the cores out.
+/// --threads N: each member starts on N and may use up to N; else
+/// OMP_NUM_THREADS, kept exactly; else demvv's choice: one rank starts on
+/// the idle cores and may use them all, several share the cores out.  A
+/// DEM member's count is governed during its run, as a run's is.
 SweepThreads sweep_threads(int requested, int ranks)
 {
-  if (requested > 0 || std::getenv("OMP_NUM_THREADS"))
-    return {apply_threads({"", requested}), 0};
+  if (requested > 0)
+    return {apply_threads({"", requested}), requested};
+  if (std::getenv("OMP_NUM_THREADS"))
+    return {apply_threads({}), 0};
   if (ranks == 1)
     return {apply_threads({}), omp_get_num_procs()};
   const int share = std::max(1, omp_get_num_procs() / ranks);

@@ -441,6 +441,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   if (protocol.resolves_contact_dynamics() && !warning.empty() && dir)
     std::cerr << "demvv: warning: " << warning << "\n";
   summary["status"] = status.to_json();
+  summary["status"]["threads"] = governor.to_json();
   if (dir && stopped_early)
     summary["status"]["resume"] = "demvv run " + dir->deck_path() + " --resume " + options.out_dir;
   if (dir)

@@ -231,6 +231,14 @@ ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<d
   next_trial_ = window_start_ + trial_spacing_;
 }
 
+nlohmann::json ThreadGovernor::to_json() const
+{
+  nlohmann::json j = {{"governed", active_}, {"at_end", threads()}, {"changes", changes_}};
+  if (active_)
+    j["most"] = most_;
+  return j;
+}
+
 void ThreadGovernor::begin_window()
 {
   steps_ = 0;

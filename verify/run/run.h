@@ -34,8 +34,9 @@ struct RunOptions
   bool resume = false;   ///< continue the run in out_dir from its checkpoint
   long pause_after = 0;  ///< > 0: stop after this many steps as an interruption would (batch-queue jobs)
   bool replace = false;  ///< demvv run --replace: a non-empty out_dir holding a run is replaced whole
-  /// > 0: demvv chose `threads` itself (a sweep's share of the cores), and
-  /// a DEM run may move between one thread and this many (ThreadGovernor).
+  /// > 0: `threads` is where a DEM run starts, and it may move between one
+  /// thread and this many (ThreadGovernor): --threads N, or a sweep's share
+  /// of the cores that demvv chose.  0 with `threads` > 0: exactly that many.
   int most_threads = 0;
 };
 
@@ -150,11 +151,12 @@ int idle_cores();
 /// OMP_NUM_THREADS when set, else idle_cores().
 int apply_threads(const RunOptions &options);
 
-/// Whether demvv chose the thread count (a sweep's share, or neither
-/// --threads nor OMP_NUM_THREADS), and so may change it while a run goes.
+/// Whether a run may change its thread count while it goes: unless the
+/// count is exact (`threads` without `most_threads`, which is how
+/// OMP_NUM_THREADS comes), since results never depend on it.
 bool threads_are_ours(const RunOptions &options);
-/// The most threads a run whose count is ours may use: the sweep's share,
-/// else every core.
+/// The most threads a run whose count is ours may use: `most_threads`
+/// (--threads, a sweep's share), else every core.
 int thread_ceiling(const RunOptions &options);
 
 /// The thread count of a DEM run while it goes.  idle_cores() sees the load
@@ -181,6 +183,9 @@ public:
   int threads() const { return phase_ == Phase::trial ? trial_ : current_; }
   /// How often the count changed so far.
   int changes() const { return changes_; }
+  /// For a run's summary: whether the count could change, up to how many
+  /// threads, how often it changed, and the count at the end.
+  nlohmann::json to_json() const;
 
 private:
   enum class Phase
