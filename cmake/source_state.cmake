@@ -1,11 +1,11 @@
 # Writes, in the folder OUT, what the sources of this build are:
 #   git_sha.h         the current git SHA (suffix -dirty if tracked files are
 #                     modified), for provenance;
-#   sources_sha256.h  the SHA-256 of the sources that make demvv's results,
-#                     the engine (dem/) and the harness that drives it
-#                     (verify/), every .h, .cpp and .in file by its path and
-#                     contents, git or not: it keys the sample cache, so a
-#                     sample prepared by another build is never served.
+#   sources_sha256.h  the SHA-256 of demvv's own sources (dem/, continuum/,
+#                     verify/: every .h, .cpp and .in file by its path and
+#                     contents; editors' hidden files left out), git or
+#                     not: it keys the sample cache, so a sample prepared
+#                     by another build is never served.
 # Run at every build, so neither is ever stale; a file is only rewritten when
 # its content changes, so nothing rebuilds needlessly.
 function(write_if_changed path content)
@@ -29,11 +29,18 @@ endif()
 write_if_changed(${OUT}/git_sha.h
   "#pragma once\nnamespace build_info { inline constexpr const char *git_sha = \"${sha}\"; }\n")
 
-file(GLOB_RECURSE sources RELATIVE ${SRC} ${SRC}/dem/*.h ${SRC}/dem/*.cpp
-     ${SRC}/verify/*.h ${SRC}/verify/*.cpp ${SRC}/verify/*.in)
+set(patterns "")
+foreach(dir dem continuum verify)
+  list(APPEND patterns ${SRC}/${dir}/*.h ${SRC}/${dir}/*.cpp ${SRC}/${dir}/*.in)
+endforeach()
+file(GLOB_RECURSE sources RELATIVE ${SRC} ${patterns})
 list(SORT sources)
 set(listing "")
 foreach(f IN LISTS sources)
+  get_filename_component(name ${f} NAME)
+  if(name MATCHES "^[.#]" OR NOT EXISTS ${SRC}/${f}) # an editor's lock or backup file
+    continue()
+  endif()
   file(SHA256 ${SRC}/${f} h)
   string(APPEND listing "${h}  ${f}\n")
 endforeach()

@@ -6,7 +6,7 @@
 # runs only the missing one, to the same table; a directory holding
 # something else, another sweep or a bad --vary is refused (exit 2, one
 # line); under MPI two ranks give the members the same results, byte for
-# byte, as one process.
+# byte, as one process; --threads is each member's ceiling.
 # Usage: sweep.sh DEMVV WORK_DIR [MPIRUN]
 set -u
 . "$(dirname "$0")/multi_run_support.sh"
@@ -37,6 +37,8 @@ for r, m in zip(rows, members):
     if r["status"] != "completed":
         continue
     s = json.load(open(d + "/members/" + m + "/summary.json"))
+    threads = s["status"]["threads"]  # --threads 2: at most two, governed
+    assert threads["governed"] and threads["most"] == 2 and 1 <= threads["at_end"] <= 2, threads
     for key in ("peak_stress_pa", "strain_at_peak", "initial_modulus_pa", "poisson_ratio"):
         assert math.isclose(float(r[key]), s[key], rel_tol=1e-10), (key, r[key], s[key])
     assert 0 <= float(r["bonds_broken_fraction_at_peak"]) <= 1, r

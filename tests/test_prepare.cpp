@@ -16,6 +16,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <omp.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -171,4 +173,23 @@ TEST_CASE("impossible packings and cells are refused with one line naming the ke
   const std::string m2 = error_of(std::move(tiny));
   CHECK(m2.find("too small for one ball") != std::string::npos);
   CHECK(m2.find('\n') == std::string::npos);
+}
+
+TEST_CASE("preparing a cached sample leaves the caller's thread count as it was", "[prepare][threads]")
+{
+  const fs::path dir = temp_path("cached");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string deck = (dir / "small.prm").string();
+  std::ofstream(deck) << "set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n";
+  // A count idle_cores(), which a preparation left to itself would take,
+  // can never return: more threads than cores.
+  const int before = omp_get_max_threads();
+  const int asked = omp_get_num_procs() + 1;
+  omp_set_num_threads(asked);
+  const std::string prepared = verify::cached_sample_file(deck, {}, false);
+  CHECK(omp_get_max_threads() == asked);
+  omp_set_num_threads(before);
+  CHECK(fs::exists(prepared));
+  CHECK(verify::cached_sample_file(deck, {}, false) == prepared); // served from the cache the second time
 }

@@ -225,11 +225,6 @@ TEST_CASE("a count with a ceiling (--threads, a sweep's share) is governed up to
   CHECK(verify::threads_are_ours(share));
   CHECK(verify::thread_ceiling(share) == 3);
   CHECK(verify::thread_ceiling(exact) == omp_get_num_procs());
-  // demvv run --threads N: starts on N, never more.
-  verify::RunOptions at_most{"", 2};
-  at_most.most_threads = 2;
-  CHECK(verify::threads_are_ours(at_most));
-  CHECK(verify::thread_ceiling(at_most) == 2);
 }
 
 TEST_CASE("the thread governor gives up a thread a busy machine holds back and keeps both on an idle one",

@@ -114,6 +114,7 @@ struct CheckContext
 {
   std::string cases_dir; ///< where the case decks are
   bool quick = true;     ///< fewer levels / shorter runs
+  int threads = 0;       ///< demvv verify --threads: the most each run of a check uses (0: demvv's choice)
 };
 
 struct Check

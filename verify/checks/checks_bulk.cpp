@@ -18,7 +18,7 @@ CheckOutcome check_energy_audit(const CheckContext &ctx)
 {
   CheckOutcome out;
   const Deck deck = load_case(ctx, "v08_energy_audit");
-  const UniaxialResult r = run_uniaxial(deck, {});
+  const UniaxialResult r = run_uniaxial(deck, run_options(ctx));
   if (r.status.fault)
     throw std::runtime_error(r.status.diagnostic());
   const auto residual = r.series.column("energy_residual_j");
@@ -152,7 +152,7 @@ CompareResult compare_case(const CheckContext &ctx, const std::string &name)
   Deck deck = load_case(ctx, name);
   if (!ctx.quick)
     deck.set("sample/file", "../p01_thesis_6000/case.prm");
-  CompareResult r = run_compare(deck, {});
+  CompareResult r = run_compare(deck, run_options(ctx));
   if (r.status.fault)
     throw std::runtime_error(r.status.diagnostic());
   return r;

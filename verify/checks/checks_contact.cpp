@@ -120,7 +120,7 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
   // --- tension ---------------------------------------------------------
   {
     const Deck deck = load_case(ctx, "v02_bond_tension");
-    const SceneResult r = completed(deck.name(), run_scene(deck, {}));
+    const SceneResult r = completed(deck.name(), run_scene(deck, run_options(ctx)));
     const double K = dem::ContactTable::pair_params(r.sim->particles(), 0, 1).kn;
     const double phi = deck.real("bonds/normal strength");
     const double v = 1e-3; // m/s, the prescribed separation speed of the case
@@ -152,7 +152,7 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
   // --- shear under a compressive preload ---------------------------------
   {
     const Deck deck = load_case(ctx, "v02_bond_shear");
-    const SceneResult r = completed(deck.name(), run_scene(deck, {}));
+    const SceneResult r = completed(deck.name(), run_scene(deck, run_options(ctx)));
     const auto params = dem::ContactTable::pair_params(r.sim->particles(), 0, 1);
     const double phi = deck.real("bonds/shear strength");
     const double v = 1e-3;
@@ -189,7 +189,7 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
   // --- compression ----------------------------------------------------------
   {
     const Deck deck = load_case(ctx, "v02_bond_compression");
-    const SceneResult r = completed(deck.name(), run_scene(deck, {}));
+    const SceneResult r = completed(deck.name(), run_scene(deck, run_options(ctx)));
     const double phi = deck.real("bonds/normal strength");
     const double broken = r.sim->bonds_broken(dem::BreakMode::tension) + r.sim->bonds_broken(dem::BreakMode::shear);
     out.metrics.push_back(bound("compression: largest compressive force / phi_n",

@@ -31,7 +31,7 @@ constexpr double pi = 3.14159265358979323846;
 
 OdeResult ode_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides)
 {
-  OdeResult r = run_burgers_ode(load_case(ctx, name, overrides), {"", 0, false});
+  OdeResult r = run_burgers_ode(load_case(ctx, name, overrides), run_options(ctx));
   if (r.status.fault)
     throw std::runtime_error(name + ": " + r.status.diagnostic());
   return r;
@@ -40,7 +40,7 @@ OdeResult ode_case(const CheckContext &ctx, const std::string &name, const std::
 CylinderResult cylinder_case(const CheckContext &ctx, const std::string &name,
                              const std::vector<std::string> &overrides)
 {
-  CylinderResult r = run_cylinder(load_case(ctx, name, overrides), {"", 0, false});
+  CylinderResult r = run_cylinder(load_case(ctx, name, overrides), run_options(ctx));
   if (r.status.fault)
     throw std::runtime_error(name + ": " + r.status.diagnostic());
   if (r.series.rows() < 2)
@@ -526,7 +526,7 @@ CheckOutcome check_manufactured_solutions(const CheckContext &ctx)
     if (ctx.quick && !s.quick)
       continue;
     const MmsDeckSpec deck = parse_mms(load_case(ctx, s.deck, s.overrides));
-    const MmsResult r = run_mms_deck(deck, {"", 0, false});
+    const MmsResult r = run_mms_deck(deck, run_options(ctx));
     if (r.status.fault)
       throw std::runtime_error(std::string(s.deck) + ": " + r.status.diagnostic());
     const continuum::MmsSpec &spec = deck.study;

@@ -14,9 +14,17 @@ Deck load_case(const CheckContext &ctx, const std::string &name, const std::vect
   return Deck::from_file(ctx.cases_dir + "/" + name + "/case.prm", overrides);
 }
 
+RunOptions run_options(const CheckContext &ctx)
+{
+  RunOptions o;
+  o.threads = ctx.threads;
+  o.most_threads = ctx.threads;
+  return o;
+}
+
 SceneResult run_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides)
 {
-  return completed(name, run_scene(load_case(ctx, name, overrides), RunOptions{"", 0, false}));
+  return completed(name, run_scene(load_case(ctx, name, overrides), run_options(ctx)));
 }
 
 SceneResult completed(const std::string &name, SceneResult r)

@@ -24,6 +24,9 @@ SceneResult run_case(const CheckContext &ctx, const std::string &name,
 SceneResult completed(const std::string &name, SceneResult r);
 Deck load_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides = {});
 
+/// How a check runs a deck: in memory, on at most ctx.threads.
+RunOptions run_options(const CheckContext &ctx);
+
 /// First time at which `values` crosses `level` upwards, linearly
 /// interpolated between rows; NaN if it never does.
 double first_crossing(const std::vector<double> &time, const std::vector<double> &values, double level);

@@ -150,7 +150,7 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
                    int threads)
 {
   const int used = apply_threads({"", threads, false});
-  CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full};
+  CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads};
   const std::vector<CheckRecord> records = run_checks(ctx, only, true);
   if (records.empty())
     throw DeckError("--only '" + only + "': no check id or title contains it");

@@ -159,7 +159,10 @@ int main(int argc, char **argv)
   verify_cmd->add_option("--only", only, "Run only checks whose id or title contains PATTERN");
   verify_cmd->add_option("--out", out_dir, "Report directory (default runs/verify)");
   verify_cmd->add_option("--cases", cases_dir, "Case decks directory (default: the source tree's cases/)");
-  verify_cmd->add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  verify_cmd->add_option("--threads", threads,
+                         "OpenMP threads, at most, for each run of a check (default: OMP_NUM_THREADS, kept exactly, "
+                         "else the cores no other process is busy on)")
+    ->check(CLI::Range(1, 1024));
 
   verify::BenchOptions bench;
   auto *bench_cmd = app.add_subcommand("bench", "Time the engine on a bonded sample and print one line");
@@ -211,9 +214,15 @@ int main(int argc, char **argv)
         throw verify::DeckError("--resume '" + resume_dir +
                                 "' and --replace: a resumed run continues the files in its directory: expected one "
                                 "of them");
-      return verify::command_run(deck_path, overrides,
-                                 {resume_dir.empty() ? out_dir : resume_dir, threads, !quiet, !resume_dir.empty(),
-                                  pause_after, replace, threads});
+      verify::RunOptions options;
+      options.out_dir = resume_dir.empty() ? out_dir : resume_dir;
+      options.threads = threads;
+      options.most_threads = threads; // --threads N: start on N, never more
+      options.progress = !quiet;
+      options.resume = !resume_dir.empty();
+      options.pause_after = pause_after;
+      options.replace = replace;
+      return verify::command_run(deck_path, overrides, options);
     }
     if (sweep_cmd->parsed())
     {

@@ -577,7 +577,7 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
 struct SweepThreads
 {
   int count = 1;
-  int most = 0; ///< > 0: demvv's choice, which each member's run may change up to this many
+  int most = 0; ///< > 0: each member's run may change its count up to this many; 0: `count` exactly
 };
 
 /// --threads N: each member starts on N and may use up to N; else

@@ -218,6 +218,7 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
           {"compiler", build_info::compiler},
           {"build_type", build_info::build_type},
           {"dem_flags", build_info::dem_flags},
+          {"dem_macros_sha256", build_info::dem_macros_sha256},
           {"threads", threads},
           {"max_threads", omp_get_max_threads()},
           {"seed", seed},
@@ -229,6 +230,6 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
 std::string build_identity()
 {
   return std::string(build_info::sources_sha256) + " " + build_info::compiler + " " + build_info::build_type + " " +
-         build_info::dem_flags;
+         build_info::dem_flags + " " + build_info::dem_macros_sha256;
 }
 } // namespace verify

@@ -85,13 +85,13 @@ private:
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-/// Provenance of a run: version, git SHA, the sources' hash, compiler, flags,
-/// threads, seed, input.
+/// Provenance of a run: version, git SHA, the sources' hash, compiler, flags
+/// and the instruction sets they resolved to, threads, seed, input.
 nlohmann::json provenance(int threads, long long seed, const std::string &deck_text);
 
-/// What makes this build's results what they are: the hash of the engine's
-/// and the harness's sources, the compiler, the build type and the engine's
-/// flags.  Part of a cached sample's key, so that a sample prepared by
+/// What makes this build's results what they are: the hash of demvv's
+/// sources, the compiler, the build type, the engine's flags and the
+/// instruction sets they resolved to.  Part of a cached sample's key, so that a sample prepared by
 /// another build (other sources, other arithmetic) is never served.
 std::string build_identity();
 

@@ -5,6 +5,8 @@
 #include "verify/io/output.h"
 #include "verify/io/paraview.h"
 
+#include <omp.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -220,7 +222,9 @@ std::string cached_sample_file(const std::string &path, const std::vector<std::s
   const std::string dir = cache_entry(deck, path);
   if (std::filesystem::exists(dir + "/sample.json"))
     return dir + "/sample.json";
-  const PrepareResult r = run_prepare(deck, {dir, 0, progress});
+  // On the caller's thread count, exactly, so that the run it prepares for
+  // goes on with the count it was given.
+  const PrepareResult r = run_prepare(deck, {dir, omp_get_max_threads(), progress});
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());
   return dir + "/sample.json";

@@ -220,9 +220,11 @@ int apply_threads(const RunOptions &options)
 }
 
 ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<double()> now)
-  : now_(std::move(now)), most_(std::max(most, 1)), current_(std::clamp(start, 1, most_)),
-    active_(active && most_ > 1)
+  : now_(std::move(now)), most_(std::max(most, 1)), current_(active ? std::clamp(start, 1, most_) : start),
+    active_(active && most_ > 1), ours_(active)
 {
+  if (ours_ && current_ != start)
+    use(current_);
   if (!now_)
     now_ = [start = std::chrono::steady_clock::now()] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -233,8 +235,8 @@ ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<d
 
 nlohmann::json ThreadGovernor::to_json() const
 {
-  nlohmann::json j = {{"governed", active_}, {"at_end", threads()}, {"changes", changes_}};
-  if (active_)
+  nlohmann::json j = {{"governed", ours_}, {"at_end", threads()}, {"changes", changes_}};
+  if (ours_)
     j["most"] = most_;
   return j;
 }

@@ -151,9 +151,9 @@ int idle_cores();
 /// OMP_NUM_THREADS when set, else idle_cores().
 int apply_threads(const RunOptions &options);
 
-/// Whether a run may change its thread count while it goes: unless the
-/// count is exact (`threads` without `most_threads`, which is how
-/// OMP_NUM_THREADS comes), since results never depend on it.
+/// Whether a run may change its thread count while it goes (results never
+/// depend on it): always, unless the count is exact: `threads` > 0 without
+/// `most_threads`, or neither with OMP_NUM_THREADS set.
 bool threads_are_ours(const RunOptions &options);
 /// The most threads a run whose count is ours may use: `most_threads`
 /// (--threads, a sweep's share), else every core.
@@ -174,8 +174,9 @@ int thread_ceiling(const RunOptions &options);
 class ThreadGovernor
 {
 public:
-  /// `start`: the threads the run starts with; `most`: never exceeded (the
-  /// cores); `active`: whether the count may change (threads_are_ours());
+  /// `start`: the threads the run starts with; `most`: never exceeded
+  /// (thread_ceiling()); `active`: whether the count may change
+  /// (threads_are_ours()), else `start` is kept as it is;
   /// `now`: a clock in seconds (steady_clock when empty; tests pass theirs).
   ThreadGovernor(int start, int most, bool active, std::function<double()> now = {});
   /// Called after every step.
@@ -183,8 +184,8 @@ public:
   int threads() const { return phase_ == Phase::trial ? trial_ : current_; }
   /// How often the count changed so far.
   int changes() const { return changes_; }
-  /// For a run's summary: whether the count could change, up to how many
-  /// threads, how often it changed, and the count at the end.
+  /// For a run's summary: whether the count was governed (could change),
+  /// up to how many threads, how often it changed, the count at the end.
   nlohmann::json to_json() const;
 
 private:
@@ -200,7 +201,8 @@ private:
   double trial_per_step_ = 0; ///< s, at trial_
   std::function<double()> now_;
   int most_, current_, trial_ = 0, changes_ = 0;
-  bool active_;
+  bool active_; ///< trials run: governed, and more than one thread allowed
+  bool ours_;   ///< governed: the count is demvv's to change, up to most_
   bool try_fewer_ = true;       ///< the direction of the next trial
   long window_steps_ = 16;      ///< steps in a window, fitted to about 0.2 s
   long steps_ = 0;              ///< steps taken in this window
