@@ -1,6 +1,7 @@
 // Whole runs: determinism, thread-count independence, sign conventions,
 // outputs that stay valid when a run stops on a numerical fault, and runs
 // that pause and resume bit for bit.
+#include "verify/checks/checks_support.h"
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 #include "verify/kinds/scene.h"
@@ -93,7 +94,7 @@ TEST_CASE("a run directory holds the resolved deck and provenance and a complete
     CHECK(fs::exists(dir / f));
   const auto summary = nlohmann::json::parse(verify::read_file((dir / "summary.json").string()));
   CHECK(summary["status"]["state"] == "completed");
-  for (const char *k : {"version", "git_sha", "sources_sha256", "compiler", "threads", "seed", "deck_fnv1a64"})
+  for (const char *k : {"version", "git_sha", "sources_sha256", "compiler", "dem_macros_sha256", "threads", "seed", "deck_fnv1a64"})
     CHECK(summary["provenance"].contains(k));
   CHECK(summary["sample"]["description"].get<std::string>().find("verification stand-in") != std::string::npos);
   // The resolved deck reads back as the deck that was run.
@@ -225,6 +226,28 @@ TEST_CASE("a count with a ceiling (--threads, a sweep's share) is governed up to
   CHECK(verify::threads_are_ours(share));
   CHECK(verify::thread_ceiling(share) == 3);
   CHECK(verify::thread_ceiling(exact) == omp_get_num_procs());
+  // demvv verify --threads N: each run of a check starts on N, never more.
+  const verify::RunOptions check = verify::run_options(verify::CheckContext{"", true, 3});
+  CHECK(check.threads == 3);
+  CHECK(check.most_threads == 3);
+}
+
+TEST_CASE("the thread governor keeps an exact count as it is and clamps a governed one to its ceiling",
+          "[run][threads]")
+{
+  const int before = omp_get_max_threads();
+  const int cores = omp_get_num_procs();
+  omp_set_num_threads(cores + 2);
+  const verify::ThreadGovernor exact(cores + 2, cores, false);
+  CHECK(exact.threads() == cores + 2);
+  CHECK(omp_get_max_threads() == cores + 2);
+  CHECK(exact.to_json()["at_end"] == cores + 2);
+  CHECK_FALSE(exact.to_json().contains("most"));
+  const verify::ThreadGovernor governed(cores + 2, cores, true);
+  CHECK(governed.threads() == cores);
+  CHECK(omp_get_max_threads() == cores); // the clamped count is the one that runs
+  CHECK(governed.to_json()["most"] == cores);
+  omp_set_num_threads(before);
 }
 
 TEST_CASE("the thread governor gives up a thread a busy machine holds back and keeps both on an idle one",
