@@ -3,7 +3,7 @@
 # whole, summary.json saying "interrupted" and a checkpoint; resuming it
 # gives the series of the run that never stopped, byte for byte, with the
 # linear law and with Burger's contacts (whose element state the checkpoint
-# must carry).
+# must carry); a resume with another deck or on another build is refused.
 # Usage: cli_interrupt.sh DEMVV CASES_DIR
 set -u
 demvv=$1
@@ -44,6 +44,18 @@ for law in linear burgers; do
     run_box --set run/duration=0.4 --resume "$dir" 2>"$work/err_other"
     [ $? -eq 2 ] || fail "$law $signal: a resume with another deck was not refused with exit code 2"
     grep -q "another deck" "$work/err_other" || fail "$law $signal: the refusal does not say why: $(cat "$work/err_other")"
+    if [ "$law$signal" = linearINT ]; then
+      cp -r "$dir" "$work/other_build"
+      python3 - "$work/other_build/checkpoint/driver.json" <<'EOF'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+doc["build"] = "another build"
+json.dump(doc, open(sys.argv[1], "w"))
+EOF
+      run_box --resume "$work/other_build" 2>"$work/err_build"
+      [ $? -eq 2 ] && [ "$(wc -l < "$work/err_build")" -eq 1 ] && grep -q "another build" "$work/err_build" ||
+        fail "a resume on another build was not refused in one line: $(cat "$work/err_build")"
+    fi
     run_box --resume "$dir" 2>/dev/null || fail "$law $signal: the resumed run failed"
     grep -q '"state": "completed"' "$dir/summary.json" || fail "$law $signal: the resumed run did not complete"
     cmp -s "$dir/series.csv" "$work/whole_$law/series.csv" ||

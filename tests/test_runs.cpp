@@ -339,3 +339,22 @@ TEST_CASE("a series on a full disk says so with the system's reason", "[run][out
     CHECK(std::string(e.what()).find(std::strerror(ENOSPC)) != std::string::npos);
   }
 }
+
+TEST_CASE("a record names this build only when every part of the build's identity agrees", "[run][provenance]")
+{
+  nlohmann::json p = verify::provenance(1, 1, "deck");
+  CHECK(verify::made_by_this_build(p));
+  CHECK(verify::made_by_this_build(verify::build_identity()));
+  const nlohmann::json identity = verify::build_identity();
+  CHECK(identity.size() == 5);
+  for (const auto &item : identity.items())
+  {
+    nlohmann::json other = p;
+    other[item.key()] = "another";
+    CHECK_FALSE(verify::made_by_this_build(other));
+    other.erase(item.key());
+    CHECK_FALSE(verify::made_by_this_build(other));
+  }
+  CHECK_FALSE(verify::made_by_this_build(nlohmann::json()));
+  CHECK_FALSE(verify::made_by_this_build(nlohmann::json::array()));
+}

@@ -286,6 +286,9 @@ SweepRow read_row(const std::string &dir, const Member &m)
   }
   else
   {
+    // A member another build ran is run again: one sweep, one build.
+    if (!made_by_this_build(summary.value("provenance", nlohmann::json())))
+      return row;
     std::string deck;
     try
     {

@@ -211,25 +211,36 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
   char when[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return {{"program", "demvv"},
-          {"version", build_info::version},
-          {"git_sha", build_info::git_sha},
-          {"sources_sha256", build_info::sources_sha256},
+  nlohmann::json p = {{"program", "demvv"},
+                      {"version", build_info::version},
+                      {"git_sha", build_info::git_sha},
+                      {"threads", threads},
+                      {"max_threads", omp_get_max_threads()},
+                      {"seed", seed},
+                      {"deck_fnv1a64", fnv1a_hex(deck_text)},
+                      {"started_utc", when},
+                      {"units", "SI (m, kg, s, N, Pa, J); compression positive"}};
+  p.update(build_identity());
+  return p;
+}
+
+nlohmann::json build_identity()
+{
+  return {{"sources_sha256", build_info::sources_sha256},
           {"compiler", build_info::compiler},
           {"build_type", build_info::build_type},
           {"dem_flags", build_info::dem_flags},
-          {"dem_macros_sha256", build_info::dem_macros_sha256},
-          {"threads", threads},
-          {"max_threads", omp_get_max_threads()},
-          {"seed", seed},
-          {"deck_fnv1a64", fnv1a_hex(deck_text)},
-          {"started_utc", when},
-          {"units", "SI (m, kg, s, N, Pa, J); compression positive"}};
+          {"dem_macros_sha256", build_info::dem_macros_sha256}};
 }
 
-std::string build_identity()
+bool made_by_this_build(const nlohmann::json &record)
 {
-  return std::string(build_info::sources_sha256) + " " + build_info::compiler + " " + build_info::build_type + " " +
-         build_info::dem_flags + " " + build_info::dem_macros_sha256;
+  if (!record.is_object())
+    return false;
+  const nlohmann::json identity = build_identity(); // named: items() does not keep a temporary alive
+  for (const auto &[key, value] : identity.items())
+    if (!record.contains(key) || record.at(key) != value)
+      return false;
+  return true;
 }
 } // namespace verify

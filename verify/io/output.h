@@ -91,9 +91,12 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
 
 /// What makes this build's results what they are: the hash of demvv's
 /// sources, the compiler, the build type, the engine's flags and the
-/// instruction sets they resolved to.  Part of a cached sample's key, so that a sample prepared by
-/// another build (other sources, other arithmetic) is never served.
-std::string build_identity();
+/// instruction sets they resolved to (keys as in provenance).  Part of a
+/// cached sample's key, so that a sample prepared by another build (other
+/// sources, other arithmetic) is never served, and of a checkpoint's.
+nlohmann::json build_identity();
+/// Whether `record` (a provenance, or a build_identity()) names this build.
+bool made_by_this_build(const nlohmann::json &record);
 
 /// FNV-1a 64-bit hash of a text, as 16 hex digits (identifies inputs; not cryptographic).
 std::string fnv1a_hex(const std::string &text);

@@ -206,7 +206,7 @@ std::string cache_entry(const Deck &deck, const std::string &path)
     throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
   // Keyed by the resolved deck and the build, so that neither another deck
   // nor a changed procedure (or its arithmetic) is served a stale sample.
-  const std::string key = deck.resolved() + "\nbuild " + build_identity();
+  const std::string key = deck.resolved() + "\nbuild " + build_identity().dump();
   return sample_cache_dir(path) + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
 }
 } // namespace

@@ -190,6 +190,7 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
   const nlohmann::json doc = {{"format", "demvv-checkpoint"},
                               {"format_version", 1},
                               {"deck_hash", hash},
+                              {"build", build_identity()},
                               {"steps", sim.steps()},
                               {"time_s", sim.time()},
                               {"cadence", cadence.state()},
@@ -348,6 +349,11 @@ void check_resumable(const std::string &run_dir, const Deck &deck)
     throw DeckError(run_dir + ": its checkpoint was written by another deck (or other --set values): expected "
                               "the deck the run started with, as recorded in " +
                     run_dir + "/deck.prm");
+  // A run goes on bit for bit only with the arithmetic it started with.
+  if (!made_by_this_build(doc.value("build", nlohmann::json())))
+    throw DeckError(run_dir + ": its checkpoint was written by another build of demvv (its provenance is in " +
+                    run_dir + "/summary.json): expected the build the run started with, or the run again without "
+                              "--resume");
 }
 
 DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, const DemOutputSpec &output,

@@ -187,6 +187,7 @@ std::string checkpoint_state_file(const std::string &run_dir);
 std::string checkpoint_sample_file(const std::string &run_dir);
 
 /// Refuses (DeckError) a resume whose run directory has no checkpoint, or
-/// whose checkpoint was written by another deck than `deck`.
+/// whose checkpoint was written by another deck than `deck` or by another
+/// build (build_identity()).
 void check_resumable(const std::string &run_dir, const Deck &deck);
 } // namespace verify
