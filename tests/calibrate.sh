@@ -83,13 +83,25 @@ assert abs(pa["value"] - pb["value"]) <= 2.5 * combined
 assert abs(11 / pa["value"] - 0.5) < 0.1
 EOF
 
-# 3. Resume: nothing runs again, the same result.
+# 3. Resume: nothing runs again, the same result; refused on another build.
 mkdir -p "$work/before"
 cp "$work/noisy_a/calibration.json" "$work/before/calibration.json"
 calibrate_noisy noisy_a 1 "" 2>"$work/err_resume" || fail "resume: $(tail -1 "$work/err_resume")"
 same_fit before noisy_a || fail "resumed calibration differs"
 [ -z "$(find "$work/noisy_a/evaluations" -path '*/members/*/summary.json' -newer "$work/before/calibration.json")" ] ||
   fail "resume ran members again"
+# ... but not on another build: its fit's path is not this build's.
+cp -r "$work/noisy_a" "$work/other_build"
+python3 - "$work/other_build/calibration.json" <<'EOF'
+import json, sys
+c = json.load(open(sys.argv[1]))
+c["provenance"]["sources_sha256"] = "0" * 64
+json.dump(c, open(sys.argv[1], "w"))
+EOF
+calibrate_noisy other_build 1 "" 2>"$work/err_other_build"
+[ $? -eq 2 ] && grep -q "another build" "$work/err_other_build" ||
+  fail "a calibration begun by another build was not refused: $(cat "$work/err_other_build")"
+one_line "$work/err_other_build" "another build"
 
 # 4. Bad input.
 expect() { # CODE WORDS NAME -- command...

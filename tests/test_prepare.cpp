@@ -19,6 +19,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -177,6 +178,10 @@ TEST_CASE("impossible packings and cells are refused with one line naming the ke
 
 TEST_CASE("preparing a cached sample leaves the caller's thread count as it was", "[prepare][threads]")
 {
+  // Neither a cache elsewhere nor a count fixed by the environment may hide
+  // what is tested (ctest runs each test case in a process of its own).
+  unsetenv("DEMVV_CACHE");
+  unsetenv("OMP_NUM_THREADS");
   const fs::path dir = temp_path("cached");
   fs::remove_all(dir);
   fs::create_directories(dir);

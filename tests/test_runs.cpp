@@ -358,3 +358,23 @@ TEST_CASE("a record names this build only when every part of the build's identit
   CHECK_FALSE(verify::made_by_this_build(nlohmann::json()));
   CHECK_FALSE(verify::made_by_this_build(nlohmann::json::array()));
 }
+
+TEST_CASE("a check's sweep runs each member on at most verify's --threads", "[run][threads]")
+{
+  // Five: a ceiling no default (the cores of this machine) is likely to equal.
+  const verify::CheckContext ctx{"", true, 5};
+  verify::SweepPlan plan;
+  plan.base_deck = std::string(DEMVV_TEST_DATA) + "/small_lattice.prm";
+  plan.keys = {"loading/final strain"};
+  plan.points = {{"0.0005"}};
+  plan.seeds = 1;
+  const verify::ScratchDirectory scratch;
+  const int before = omp_get_max_threads();
+  const verify::SweepOutcome outcome = verify::run_sweep_in(ctx, scratch, plan);
+  omp_set_num_threads(before);
+  REQUIRE(outcome.rows.size() == 1);
+  REQUIRE(outcome.rows[0].status == "completed");
+  const nlohmann::json threads = read_json(fs::path(outcome.rows[0].directory) / "summary.json")["status"]["threads"];
+  CHECK(threads["governed"] == true);
+  CHECK(threads["most"] == 5);
+}

@@ -159,7 +159,7 @@ struct MemberResult
 
 /// Runs the study's recipe at every level (point after point, seed
 /// innermost) through the sweep engine in a temporary directory.
-std::vector<MemberResult> run_levels(const BulkStudy &s, const Levels &levels)
+std::vector<MemberResult> run_levels(const CheckContext &ctx, const BulkStudy &s, const Levels &levels)
 {
   SweepPlan plan;
   plan.base_deck = s.deck;
@@ -174,7 +174,7 @@ std::vector<MemberResult> run_levels(const BulkStudy &s, const Levels &levels)
     plan.points.push_back(point);
   }
   const ScratchDirectory scratch;
-  const SweepOutcome outcome = run_sweep_in(scratch, plan);
+  const SweepOutcome outcome = run_sweep_in(ctx, scratch, plan);
   const std::size_t per_level = std::size_t(std::max(levels.seeds, 1));
   std::vector<MemberResult> results;
   for (std::size_t i = 0; i < outcome.rows.size(); ++i)
@@ -243,7 +243,7 @@ const std::vector<MemberResult> &seed_ensemble(const CheckContext &ctx)
   if (const auto it = done.find(key); it != done.end())
     return it->second;
   const BulkStudy s = bulk_study(ctx);
-  return done.emplace(key, run_levels(s, {"loading/platen speed", {s.platen_speed}, ensemble_seeds, 1}))
+  return done.emplace(key, run_levels(ctx, s, {"loading/platen speed", {s.platen_speed}, ensemble_seeds, 1}))
     .first->second;
 }
 
@@ -338,7 +338,7 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
 {
   const BulkStudy s = bulk_study(ctx);
   const std::vector<double> safeties = {0.8, 0.4, 0.2};
-  const std::vector<MemberResult> r = run_levels(s, {"motion/time step safety", safeties});
+  const std::vector<MemberResult> r = run_levels(ctx, s, {"motion/time step safety", safeties});
   const SeedScatter scatter = seed_scatter(ctx);
   const MemberResult &coarsest = r.front();
   const double step_stress = coarsest.modulus * coarsest.series.strain_per_step;
@@ -386,7 +386,7 @@ CheckOutcome check_loading_rate(const CheckContext &ctx)
 {
   const BulkStudy s = bulk_study(ctx);
   const std::vector<double> speeds = {2 * s.platen_speed, s.platen_speed, s.platen_speed / 2};
-  const std::vector<MemberResult> r = run_levels(s, {"loading/platen speed", speeds});
+  const std::vector<MemberResult> r = run_levels(ctx, s, {"loading/platen speed", speeds});
   const SeedScatter scatter = seed_scatter(ctx);
   const std::string at = "stress at " + num(100 * s.fixed_strain) + " % strain";
   const std::string slowest = "from " + num(speeds[1]) + " m/s to " + num(speeds[2]) + " m/s";

@@ -16,9 +16,8 @@ Deck load_case(const CheckContext &ctx, const std::string &name, const std::vect
 
 RunOptions run_options(const CheckContext &ctx)
 {
-  RunOptions o;
-  o.threads = ctx.threads;
-  o.most_threads = ctx.threads;
+  RunOptions o = RunOptions::at_most(ctx.threads);
+  o.progress = false;
   return o;
 }
 
@@ -72,9 +71,10 @@ std::vector<std::string> fix_entries(SweepPlan &plan, const std::vector<std::str
   return values;
 }
 
-SweepOutcome run_sweep_in(const ScratchDirectory &scratch, const SweepPlan &plan)
+SweepOutcome run_sweep_in(const CheckContext &ctx, const ScratchDirectory &scratch, const SweepPlan &plan)
 {
   SweepSettings settings;
+  settings.threads = ctx.threads;
   settings.out_dir = scratch.path() + "/sweep";
   settings.progress = false;
   settings.figures = false; // a check draws its own figures

@@ -24,7 +24,7 @@ SceneResult run_case(const CheckContext &ctx, const std::string &name,
 SceneResult completed(const std::string &name, SceneResult r);
 Deck load_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides = {});
 
-/// How a check runs a deck: in memory, on at most ctx.threads.
+/// How a check runs a deck: in memory, quietly, on at most ctx.threads.
 RunOptions run_options(const CheckContext &ctx);
 
 /// First time at which `values` crosses `level` upwards, linearly
@@ -52,8 +52,9 @@ private:
 std::vector<std::string> fix_entries(SweepPlan &plan, const std::vector<std::string> &entries);
 
 /// Runs (or resumes) a sweep without progress output in a scratch
-/// directory, which holds the members' run directories while it lives.
-SweepOutcome run_sweep_in(const ScratchDirectory &scratch, const SweepPlan &plan);
+/// directory, which holds the members' run directories while it lives;
+/// each member on at most ctx.threads.
+SweepOutcome run_sweep_in(const CheckContext &ctx, const ScratchDirectory &scratch, const SweepPlan &plan);
 
 /// Member `index` of a sweep, or throws (failing the check) naming `what`
 /// when that member did not complete.

@@ -129,6 +129,7 @@ const nlohmann::json &calibration(const CheckContext &ctx)
   o.seeds = s.seeds;
   o.settings.out_dir = scratch.path() + "/calibration";
   o.settings.progress = false;
+  o.settings.threads = ctx.threads;
   const int code = command_calibrate(o);
   nlohmann::json result = nlohmann::json::parse(read_file(o.settings.out_dir + "/calibration.json"));
   result["exit_code"] = code;
@@ -204,7 +205,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
       plan.points.push_back(point);
     }
   const ScratchDirectory scratch;
-  const SweepOutcome outcome = run_sweep_in(scratch, plan);
+  const SweepOutcome outcome = run_sweep_in(ctx, scratch, plan);
 
   CheckOutcome out;
   const std::vector<std::string> labels = {"strengths and stiffnesses scaled (slope built in)",

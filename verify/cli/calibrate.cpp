@@ -561,7 +561,21 @@ void Calibration::write_outputs(const std::string &status, const Evaluation *fin
 int Calibration::run()
 {
   on_rank_zero_for_all(true, [&] {
-    claim_resumable_directory(o_.settings.out_dir, o_.settings.replace, "calibration", "calibration.json");
+    const std::string record = o_.settings.out_dir + "/calibration.json";
+    if (!claim_resumable_directory(o_.settings.out_dir, o_.settings.replace, "calibration", "calibration.json"))
+      return;
+    // The fit's path is read back only where this build's arithmetic made it.
+    nlohmann::json doc;
+    try
+    {
+      doc = nlohmann::json::parse(read_file(record));
+    }
+    catch (const std::exception &)
+    {
+    }
+    if (doc.is_object() && !made_by_this_build(doc.value("provenance", nlohmann::json())))
+      throw DeckError("calibration directory '" + o_.settings.out_dir + "' was begun by another build of demvv (" +
+                      record + "): expected the build that began it, or --replace to start it over");
   });
   if (mpi_.rank == 0)
     make_directories(o_.settings.out_dir + "/evaluations");

@@ -47,7 +47,9 @@
 // and the provenance; DIR/fitted.prm the base deck with the fitted values
 // and the condition set.  Everything is rewritten atomically after every
 // evaluation (fitted.prm once converged).  Rerunning the same command resumes: evaluations already in
-// DIR are read back (the fit's path is the same), the rest run.  A member
+// DIR are read back (the fit's path is the same), the rest run; a
+// calibration another build of demvv began is refused (--replace starts it
+// over).  A member
 // that faults or is refused stops the fit with exit code 3 (numerical) or 2
 // (its deck), everything up to there kept.
 #pragma once

@@ -4,7 +4,7 @@
 //   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
 //   demvv calibrate BASE_DECK --fit KEY[+KEY...]=START --target QUANTITY=VALUE[,U] [--at KEY=VALUE] [--seeds N] --out DIR
 //   demvv defaults KIND
-//   demvv verify [--quick|--full] [--only PATTERN] [--out DIR]
+//   demvv verify [--quick|--full] [--only PATTERN] [--out DIR] [--cases DIR] [--threads N]
 //   demvv bench [--particles N] [--steps N] [--threads N]
 //   demvv catalogue [--out FILE]
 //   demvv plot RUN_DIR
@@ -214,10 +214,8 @@ int main(int argc, char **argv)
         throw verify::DeckError("--resume '" + resume_dir +
                                 "' and --replace: a resumed run continues the files in its directory: expected one "
                                 "of them");
-      verify::RunOptions options;
+      verify::RunOptions options = verify::RunOptions::at_most(threads);
       options.out_dir = resume_dir.empty() ? out_dir : resume_dir;
-      options.threads = threads;
-      options.most_threads = threads; // --threads N: start on N, never more
       options.progress = !quiet;
       options.resume = !resume_dir.empty();
       options.pause_after = pause_after;

@@ -261,7 +261,8 @@ double broken_at_peak(const std::string &dir, const nlohmann::json &summary)
 }
 
 /// A member's row from its run directory: pending while the directory
-/// holds no summary of this member's deck.
+/// holds no summary of this member's deck made by this build (a member
+/// another build ran is run again: one sweep, one build).
 SweepRow read_row(const std::string &dir, const Member &m)
 {
   SweepRow row;
@@ -275,6 +276,8 @@ SweepRow read_row(const std::string &dir, const Member &m)
   {
     return row;
   }
+  if (!made_by_this_build(summary.value("provenance", nlohmann::json())))
+    return row;
   const nlohmann::json status = summary.value("status", nlohmann::json::object());
   const std::string state = status.value("state", "");
   if (state == "refused" && !summary.contains("kind"))
@@ -286,9 +289,6 @@ SweepRow read_row(const std::string &dir, const Member &m)
   }
   else
   {
-    // A member another build ran is run again: one sweep, one build.
-    if (!made_by_this_build(summary.value("provenance", nlohmann::json())))
-      return row;
     std::string deck;
     try
     {

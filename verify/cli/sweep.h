@@ -40,8 +40,8 @@
 // and message; the others go on.  DIR/sweep.json holds the provenance.
 //
 // Rerunning the same sweep into DIR resumes it: a member whose directory
-// holds a completed summary.json of the same resolved deck (deck.prm) is
-// kept, every other one runs (again).  --replace starts a sweep directory
+// holds a completed summary.json of the same resolved deck (deck.prm),
+// made by this build, is kept, every other one runs (again).  --replace starts a sweep directory
 // over; a non-empty directory that holds no sweep.json is never touched.
 //
 // Under `mpirun -np K` the ranks share the members round-robin by index

@@ -352,8 +352,8 @@ void check_resumable(const std::string &run_dir, const Deck &deck)
   // A run goes on bit for bit only with the arithmetic it started with.
   if (!made_by_this_build(doc.value("build", nlohmann::json())))
     throw DeckError(run_dir + ": its checkpoint was written by another build of demvv (its provenance is in " +
-                    run_dir + "/summary.json): expected the build the run started with, or the run again without "
-                              "--resume");
+                    run_dir + "/summary.json): expected the build the run started with, or the run from its start "
+                              "(--out " + run_dir + " --replace)");
 }
 
 DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, const DemOutputSpec &output,

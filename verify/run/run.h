@@ -38,6 +38,16 @@ struct RunOptions
   /// thread and this many (ThreadGovernor): --threads N, or a sweep's share
   /// of the cores that demvv chose.  0 with `threads` > 0: exactly that many.
   int most_threads = 0;
+
+  /// Options that start a run on `threads` and never use more (0: demvv's
+  /// choice): what --threads means.
+  static RunOptions at_most(int threads)
+  {
+    RunOptions o;
+    o.threads = threads;
+    o.most_threads = threads;
+    return o;
+  }
 };
 
 struct RunStatus
