@@ -41,8 +41,9 @@
 //
 // Rerunning the same sweep into DIR resumes it: a member whose directory
 // holds a completed summary.json of the same resolved deck (deck.prm),
-// made by this build, is kept, every other one runs (again).  --replace starts a sweep directory
-// over; a non-empty directory that holds no sweep.json is never touched.
+// made by this build, is kept, every other one runs (again).  --replace
+// starts a sweep directory over; a non-empty directory that holds no
+// sweep.json is never touched.
 //
 // Under `mpirun -np K` the ranks share the members round-robin by index
 // (member i on rank i mod K), each member on one rank with its threads, so

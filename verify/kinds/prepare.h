@@ -6,9 +6,9 @@
 // sample, summary.json and deck.prm.  Uniaxial decks load the sample file,
 // or name the prepare deck itself: the sample is then prepared once and
 // cached beside that deck, in samples/<deck>-<hash>/ (keyed by the resolved
-// deck and the build: the sources' hash, compiler and flags), whatever the
-// current folder; the environment variable DEMVV_CACHE, when set, names
-// another folder for it.
+// deck and the build: the sources' hash, compiler, flags and instruction
+// sets, output.h's build_identity()), whatever the current folder; the
+// environment variable DEMVV_CACHE, when set, names another folder for it.
 #pragma once
 
 #include "verify/decks/deck.h"
