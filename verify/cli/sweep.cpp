@@ -576,27 +576,22 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
                             "it, or --replace to start it over");
 }
 
-/// Threads for each member (RunOptions::threads and most_threads).
-struct SweepThreads
-{
-  int count = 1;
-  int most = 0; ///< > 0: each member's run may change its count up to this many; 0: `count` exactly
-};
-
+/// Each member's threads (RunOptions::threads and most_threads), applied:
 /// --threads N: each member starts on N and may use up to N; else
 /// OMP_NUM_THREADS, kept exactly; else demvv's choice: one rank starts on
 /// the idle cores and may use them all, several share the cores out.  A
 /// DEM member's count is governed during its run, as a run's is.
-SweepThreads sweep_threads(int requested, int ranks)
+RunOptions member_threads(int requested, int ranks)
 {
-  if (requested > 0)
-    return {apply_threads({"", requested}), requested};
-  if (std::getenv("OMP_NUM_THREADS"))
-    return {apply_threads({}), 0};
-  if (ranks == 1)
-    return {apply_threads({}), omp_get_num_procs()};
-  const int share = std::max(1, omp_get_num_procs() / ranks);
-  return {apply_threads({"", share}), share};
+  RunOptions o = RunOptions::at_most(requested);
+  if (requested <= 0 && !std::getenv("OMP_NUM_THREADS"))
+  {
+    o.most_threads = ranks == 1 ? omp_get_num_procs() : std::max(1, omp_get_num_procs() / ranks);
+    if (ranks > 1)
+      o.threads = o.most_threads;
+  }
+  o.threads = apply_threads(o);
+  return o;
 }
 } // namespace
 
@@ -651,8 +646,8 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
 
   std::vector<Member> members = plan_members(plan);
   on_rank_zero_for_all(true, [&] { claim_sweep_directory(o.out_dir, o.replace, members); });
-  const SweepThreads member_threads = sweep_threads(o.threads, mpi.ranks);
-  const int threads = member_threads.count;
+  const RunOptions member_options = member_threads(o.threads, mpi.ranks);
+  const int threads = member_options.threads;
   prepare_samples(members, int(mpi.rank), int(mpi.ranks), o.progress);
   resolve_members(members, plan.base_deck, fnv1a_hex(base.resolved()));
 
@@ -704,9 +699,10 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
     if (refusal.empty())
       try
       {
-        RunOptions member_options{dir, threads, false};
-        member_options.most_threads = member_threads.most;
-        const RunStatus status = kind->run(Deck::from_file(plan.base_deck, m.overrides), member_options);
+        RunOptions member_run = member_options;
+        member_run.out_dir = dir;
+        member_run.progress = false;
+        const RunStatus status = kind->run(Deck::from_file(plan.base_deck, m.overrides), member_run);
         interrupted = status.interrupted_by;
         if (status.fault)
           std::cerr << "demvv: member " << m.label << ": " << status.diagnostic() << "\n";

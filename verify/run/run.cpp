@@ -221,7 +221,7 @@ int apply_threads(const RunOptions &options)
 
 ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<double()> now)
   : now_(std::move(now)), most_(std::max(most, 1)), current_(active ? std::clamp(start, 1, most_) : start),
-    active_(active && most_ > 1), ours_(active)
+    ours_(active)
 {
   if (ours_ && current_ != start)
     use(current_);
@@ -251,7 +251,7 @@ void ThreadGovernor::use(int threads) { omp_set_num_threads(threads); }
 
 void ThreadGovernor::after_step()
 {
-  if (!active_ || ++steps_ < window_steps_)
+  if (!ours_ || most_ == 1 || ++steps_ < window_steps_) // no trials where only one count is allowed
     return;
   constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32;
   const double end = now_();

@@ -211,8 +211,7 @@ private:
   double trial_per_step_ = 0; ///< s, at trial_
   std::function<double()> now_;
   int most_, current_, trial_ = 0, changes_ = 0;
-  bool active_; ///< trials run: governed, and more than one thread allowed
-  bool ours_;   ///< governed: the count is demvv's to change, up to most_
+  bool ours_; ///< governed: the count is demvv's to change, up to most_
   bool try_fewer_ = true;       ///< the direction of the next trial
   long window_steps_ = 16;      ///< steps in a window, fitted to about 0.2 s
   long steps_ = 0;              ///< steps taken in this window
