@@ -4,6 +4,7 @@
 #include "verify/checks/checks_support.h"
 #include "verify/decks/deck.h"
 #include "verify/kinds/prepare.h"
+#include "verify/io/output.h"
 #include "verify/io/sample_file.h"
 #include "verify/kinds/uniaxial.h"
 
@@ -18,6 +19,7 @@
 
 #include <omp.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -32,6 +34,22 @@ std::string temp_path(const std::string &name)
   const fs::path dir = demvv_tests::test_folder("test_prepare");
   fs::create_directories(dir);
   return (dir / name).string();
+}
+
+/// A finished cache entry `name` in `cache`, made by the build whose
+/// sources hash is `sources` (this build's own when empty), last used
+/// `hours_ago`.
+void fake_cache_entry(const fs::path &cache, const std::string &name, const std::string &sources, int hours_ago)
+{
+  const fs::path entry = cache / name;
+  fs::create_directories(entry);
+  nlohmann::json provenance = verify::build_identity();
+  if (!sources.empty())
+    provenance["sources_sha256"] = sources;
+  provenance["seed"] = 1;
+  std::ofstream(entry / "summary.json") << nlohmann::json{{"kind", "prepare"}, {"provenance", provenance}}.dump();
+  std::ofstream(entry / "sample.json") << "{}";
+  fs::last_write_time(entry / "sample.json", fs::file_time_type::clock::now() - std::chrono::hours(hours_ago));
 }
 
 verify::Deck small_prepare_deck()
@@ -176,7 +194,8 @@ TEST_CASE("impossible packings and cells are refused with one line naming the ke
   CHECK(m2.find('\n') == std::string::npos);
 }
 
-TEST_CASE("preparing a cached sample leaves the caller's thread count as it was", "[prepare][threads]")
+TEST_CASE("preparing a cached sample leaves the caller's thread count as it was and prunes the cache",
+          "[prepare][threads][cache]")
 {
   // Neither a cache elsewhere nor a count fixed by the environment may hide
   // what is tested (ctest runs each test case in a process of its own).
@@ -192,9 +211,73 @@ TEST_CASE("preparing a cached sample leaves the caller's thread count as it was"
   const int before = omp_get_max_threads();
   const int asked = omp_get_num_procs() + 1;
   omp_set_num_threads(asked);
+  // Samples of four other builds: the preparation keeps the two used last
+  // beside its own (cached_builds = 3).
+  for (int k = 1; k <= 4; ++k)
+    fake_cache_entry(dir / "samples", "small-00000000000" + std::to_string(k), std::to_string(k), k);
   const std::string prepared = verify::cached_sample_file(deck, {}, false);
   CHECK(omp_get_max_threads() == asked);
   omp_set_num_threads(before);
   CHECK(fs::exists(prepared));
   CHECK(verify::cached_sample_file(deck, {}, false) == prepared); // served from the cache the second time
+  CHECK(fs::exists(dir / "samples" / "small-000000000001"));
+  CHECK(fs::exists(dir / "samples" / "small-000000000002"));
+  CHECK_FALSE(fs::exists(dir / "samples" / "small-000000000003"));
+  CHECK_FALSE(fs::exists(dir / "samples" / "small-000000000004"));
+}
+
+
+TEST_CASE("the sample cache keeps this build's samples and those of the builds used last", "[prepare][cache]")
+{
+  const fs::path cache = temp_path("cache_pruning");
+  fs::remove_all(cache);
+  fs::create_directories(cache);
+  fake_cache_entry(cache, "p-000000000001", "x", 4); // build x: an old entry and the newest of all
+  fake_cache_entry(cache, "p-000000000002", "x", 1);
+  fake_cache_entry(cache, "q-000000000003", "z", 2);
+  fake_cache_entry(cache, "p-000000000004", "y", 3);
+  fake_cache_entry(cache, "p-000000000005", "w", 5); // the build used longest ago
+  fake_cache_entry(cache, "p-000000000006", "w", 6);
+  fake_cache_entry(cache, "p-000000000007", "", 9); // this build, whenever it was used
+  // Not entries to prune: one still being prepared (no summary yet), a
+  // folder of another name, a summary of another kind of run.
+  fs::create_directories(cache / "p-000000000008");
+  std::ofstream(cache / "p-000000000008" / "sample.json") << "{}";
+  fake_cache_entry(cache, "notes", "w", 7);
+  fake_cache_entry(cache, "r-000000000009", "w", 8);
+  std::ofstream(cache / "r-000000000009" / "summary.json") << R"({"kind": "uniaxial", "provenance": {}})";
+
+  verify::prune_sample_cache(cache.string(), 3);
+  for (const char *kept : {"p-000000000001", "p-000000000002", "q-000000000003", "p-000000000004", "p-000000000007",
+                           "p-000000000008", "notes", "r-000000000009"})
+    CHECK(fs::exists(cache / kept));
+  CHECK_FALSE(fs::exists(cache / "p-000000000005"));
+  CHECK_FALSE(fs::exists(cache / "p-000000000006"));
+
+  // Keeping one build: the most recently used (x), and this one.
+  verify::prune_sample_cache(cache.string(), 1);
+  CHECK(fs::exists(cache / "p-000000000001"));
+  CHECK(fs::exists(cache / "p-000000000007"));
+  CHECK_FALSE(fs::exists(cache / "q-000000000003"));
+  CHECK_FALSE(fs::exists(cache / "p-000000000004"));
+  // A folder that is not there is no error.
+  verify::prune_sample_cache((cache / "absent").string(), 1);
+}
+
+TEST_CASE("a sample served from the cache is marked as used", "[prepare][cache]")
+{
+  unsetenv("DEMVV_CACHE");
+  const fs::path dir = temp_path("cache_use");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string deck = (dir / "small.prm").string();
+  std::ofstream(deck) << "set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n";
+  // A stand-in for a prepared sample: a hit never reads it.
+  const fs::path file = verify::cached_sample_file_name(deck, {});
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << "{}";
+  const auto long_ago = fs::file_time_type::clock::now() - std::chrono::hours(48);
+  fs::last_write_time(file, long_ago);
+  CHECK(verify::cached_sample_file(deck, {}, false) == file.string());
+  CHECK(fs::last_write_time(file) > long_ago + std::chrono::hours(47));
 }

@@ -7,11 +7,17 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <regex>
+#include <sstream>
 
 namespace verify
 {
@@ -209,7 +215,69 @@ std::string cache_entry(const Deck &deck, const std::string &path)
   const std::string key = deck.resolved() + "\nbuild " + build_identity().dump();
   return sample_cache_dir(path) + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
 }
+
+/// The build that made a cache entry, as one string: the build_identity()
+/// fields of its summary's provenance.  Empty when the folder is no
+/// finished entry of a prepare deck (no readable summary: one still being
+/// prepared, or not a sample at all).
+std::string entry_build(const std::filesystem::path &entry)
+{
+  std::ifstream in(entry / "summary.json");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const nlohmann::json summary = nlohmann::json::parse(text.str(), nullptr, false);
+  if (!summary.is_object() || summary.value("kind", "") != "prepare" || !summary.contains("provenance") ||
+      !summary["provenance"].is_object())
+    return {};
+  const nlohmann::json &provenance = summary["provenance"];
+  const nlohmann::json identity = build_identity(); // named: items() does not keep a temporary alive
+  nlohmann::json build = nlohmann::json::object();
+  for (const auto &[key, value] : identity.items())
+    build[key] = provenance.contains(key) ? provenance[key] : nlohmann::json();
+  return build.dump();
+}
 } // namespace
+
+void prune_sample_cache(const std::string &dir, std::size_t keep)
+{
+  namespace fs = std::filesystem;
+  struct Entry
+  {
+    fs::path path;
+    std::string build;
+  };
+  // Only folders named as cache_entry() names them: a DEMVV_CACHE folder
+  // may hold other things.
+  static const std::regex entry_name(".+-[0-9a-f]{12}");
+  std::vector<Entry> entries;
+  std::map<std::string, fs::file_time_type> last_use;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+  {
+    if (!it->is_directory(ec) || !std::regex_match(it->path().filename().string(), entry_name))
+      continue;
+    const fs::file_time_type used = fs::last_write_time(it->path() / "sample.json", ec);
+    std::string build = ec ? std::string() : entry_build(it->path());
+    ec.clear();
+    if (build.empty())
+      continue;
+    const auto [at, added] = last_use.emplace(build, used);
+    if (!added)
+      at->second = std::max(at->second, used);
+    entries.push_back({it->path(), std::move(build)});
+  }
+  std::vector<std::pair<fs::file_time_type, std::string>> builds;
+  for (const auto &[build, used] : last_use)
+    builds.emplace_back(used, build);
+  std::sort(builds.begin(), builds.end(), std::greater<>());
+  nlohmann::json ours = build_identity();
+  std::vector<std::string> kept = {ours.dump()};
+  for (std::size_t k = 0; k < builds.size() && k < keep; ++k)
+    kept.push_back(builds[k].second);
+  for (const Entry &e : entries)
+    if (std::find(kept.begin(), kept.end(), e.build) == kept.end())
+      fs::remove_all(e.path, ec);
+}
 
 std::string cached_sample_file_name(const std::string &path, const std::vector<std::string> &overrides)
 {
@@ -220,14 +288,22 @@ std::string cached_sample_file(const std::string &path, const std::vector<std::s
 {
   const Deck deck = Deck::from_file(path, overrides);
   const std::string dir = cache_entry(deck, path);
-  if (std::filesystem::exists(dir + "/sample.json"))
-    return dir + "/sample.json";
+  const std::string file = dir + "/sample.json";
+  if (std::filesystem::exists(file))
+  {
+    // The time of its last use, which pruning reads; a cache this process
+    // may not write is still served.
+    std::error_code ignored;
+    std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ignored);
+    return file;
+  }
   // On the caller's thread count, exactly, so that the run it prepares for
   // goes on with the count it was given.
   const PrepareResult r = run_prepare(deck, {dir, omp_get_max_threads(), progress});
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());
-  return dir + "/sample.json";
+  prune_sample_cache(sample_cache_dir(path), cached_builds);
+  return file;
 }
 
 SampleFile load_or_prepare_sample(const std::string &path)

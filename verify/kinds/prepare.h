@@ -9,12 +9,15 @@
 // deck and the build: the sources' hash, compiler, flags and instruction
 // sets, output.h's build_identity()), whatever the current folder; the
 // environment variable DEMVV_CACHE, when set, names another folder for it.
+// The cache keeps the samples of the few builds used most recently
+// (prune_sample_cache), so that it does not grow with every rebuild.
 #pragma once
 
 #include "verify/decks/deck.h"
 #include "verify/run/run.h"
 #include "verify/io/sample_file.h"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -46,6 +49,18 @@ std::string sample_cache_dir(const std::string &deck_path);
 /// is refused (DeckError), a preparation that stops on a fault is a
 /// std::runtime_error.
 std::string cached_sample_file(const std::string &path, const std::vector<std::string> &overrides, bool progress);
+
+/// How many builds' samples the cache keeps: cached_sample_file() prunes
+/// the others after each preparation.
+constexpr std::size_t cached_builds = 3;
+
+/// Removes from the sample cache folder `dir` the entries (folders named
+/// <deck>-<hash> holding a finished prepare run) made by builds other than
+/// this one and the `keep` most recently used.  An entry's last use is the
+/// time of its sample.json, which cached_sample_file() renews; a build's is
+/// that of its most recently used entry.  Entries being prepared (no
+/// summary yet) and folders of other names are left alone.
+void prune_sample_cache(const std::string &dir, std::size_t keep);
 
 /// Where cached_sample_file() keeps that sample, prepared or not.
 std::string cached_sample_file_name(const std::string &path, const std::vector<std::string> &overrides);
