@@ -3,7 +3,8 @@
 # whole, summary.json saying "interrupted" and a checkpoint; resuming it
 # gives the series of the run that never stopped, byte for byte, with the
 # linear law and with Burger's contacts (whose element state the checkpoint
-# must carry); a resume with another deck or on another build is refused.
+# must carry), by the command its message gives; a resume with another
+# deck or on another build is refused.
 # Usage: cli_interrupt.sh DEMVV CASES_DIR
 set -u
 demvv=$1
@@ -40,7 +41,10 @@ for law in linear burgers; do
     [ $code -eq $expected ] || fail "$law $signal: exit code $code, expected $expected ($(cat "$work/err"))"
     grep -q '"state": "interrupted"' "$dir/summary.json" || fail "$law $signal: summary.json does not say interrupted"
     [ -f "$dir/checkpoint/driver.json" ] || fail "$law $signal: no checkpoint"
-    grep -q -- "--resume" "$work/err" || fail "$law $signal: the message does not say how to resume"
+    # The command the message gives, run as given: it must repeat the deck's
+    # --set values and the thread count, or the resume is refused.
+    continue_with=$(sed -n 's/.*; continue with: demvv //p' "$work/err")
+    [ -n "$continue_with" ] || fail "$law $signal: the message does not say how to resume: $(cat "$work/err")"
     run_box --set run/duration=0.4 --resume "$dir" 2>"$work/err_other"
     [ $? -eq 2 ] || fail "$law $signal: a resume with another deck was not refused with exit code 2"
     grep -q "another deck" "$work/err_other" || fail "$law $signal: the refusal does not say why: $(cat "$work/err_other")"
@@ -56,7 +60,8 @@ EOF
       [ $? -eq 2 ] && [ "$(wc -l < "$work/err_build")" -eq 1 ] && grep -q "another build" "$work/err_build" ||
         fail "a resume on another build was not refused in one line: $(cat "$work/err_build")"
     fi
-    run_box --resume "$dir" 2>/dev/null || fail "$law $signal: the resumed run failed"
+    eval "\"\$demvv\" $continue_with --quiet" 2>"$work/err_resume" ||
+      fail "$law $signal: the resume the message gives failed: demvv $continue_with: $(cat "$work/err_resume")"
     grep -q '"state": "completed"' "$dir/summary.json" || fail "$law $signal: the resumed run did not complete"
     cmp -s "$dir/series.csv" "$work/whole_$law/series.csv" ||
       fail "$law $signal: resumed series.csv differs from the uninterrupted run"
