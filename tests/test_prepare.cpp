@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 namespace
 {
@@ -36,20 +37,28 @@ std::string temp_path(const std::string &name)
   return (dir / name).string();
 }
 
-/// A finished cache entry `name` in `cache`, made by the build whose
-/// sources hash is `sources` (this build's own when empty), last used
-/// `hours_ago`.
-void fake_cache_entry(const fs::path &cache, const std::string &name, const std::string &sources, int hours_ago)
+/// A finished sample cache entry of a deck whose resolved text is `deck`,
+/// in `cache`, made by the build whose sources hash is `sources` (this
+/// build's own when empty), its sample last used `days_ago`; its folder.
+fs::path fake_cache_entry(const fs::path &cache, const std::string &deck, const std::string &sources, int days_ago)
 {
-  const fs::path entry = cache / name;
-  fs::create_directories(entry);
-  nlohmann::json provenance = verify::build_identity();
+  nlohmann::json build = verify::build_identity();
   if (!sources.empty())
-    provenance["sources_sha256"] = sources;
-  provenance["seed"] = 1;
+    build["sources_sha256"] = sources;
+  const fs::path entry = cache / ("p-" + verify::sample_cache_hash(deck, build));
+  fs::create_directories(entry);
+  // What differs between runs of one build must not split it.
+  static int runs = 0;
+  ++runs;
+  nlohmann::json provenance = build;
+  provenance["seed"] = runs;
+  provenance["threads"] = runs;
+  provenance["started_utc"] = "2026-11-01T00:00:" + std::to_string(10 + runs) + "Z";
   std::ofstream(entry / "summary.json") << nlohmann::json{{"kind", "prepare"}, {"provenance", provenance}}.dump();
+  std::ofstream(entry / "deck.prm") << deck;
   std::ofstream(entry / "sample.json") << "{}";
-  fs::last_write_time(entry / "sample.json", fs::file_time_type::clock::now() - std::chrono::hours(hours_ago));
+  fs::last_write_time(entry / "sample.json", fs::file_time_type::clock::now() - std::chrono::hours(24 * days_ago));
+  return entry;
 }
 
 verify::Deck small_prepare_deck()
@@ -211,57 +220,77 @@ TEST_CASE("preparing a cached sample leaves the caller's thread count as it was 
   const int before = omp_get_max_threads();
   const int asked = omp_get_num_procs() + 1;
   omp_set_num_threads(asked);
-  // Samples of four other builds: the preparation keeps the two used last
-  // beside its own (cached_builds = 3).
+  // Samples of four other builds, none used for a week: the preparation
+  // keeps the two used last beside its own (cached_builds = 3).
+  std::vector<fs::path> others;
   for (int k = 1; k <= 4; ++k)
-    fake_cache_entry(dir / "samples", "small-00000000000" + std::to_string(k), std::to_string(k), k);
+    others.push_back(fake_cache_entry(dir / "samples", "deck", std::to_string(k), 7 + k));
   const std::string prepared = verify::cached_sample_file(deck, {}, false);
   CHECK(omp_get_max_threads() == asked);
   omp_set_num_threads(before);
   CHECK(fs::exists(prepared));
   CHECK(verify::cached_sample_file(deck, {}, false) == prepared); // served from the cache the second time
-  CHECK(fs::exists(dir / "samples" / "small-000000000001"));
-  CHECK(fs::exists(dir / "samples" / "small-000000000002"));
-  CHECK_FALSE(fs::exists(dir / "samples" / "small-000000000003"));
-  CHECK_FALSE(fs::exists(dir / "samples" / "small-000000000004"));
+  CHECK(fs::exists(others[0]));
+  CHECK(fs::exists(others[1]));
+  CHECK_FALSE(fs::exists(others[2]));
+  CHECK_FALSE(fs::exists(others[3]));
 }
 
-
-TEST_CASE("the sample cache keeps this build's samples and those of the builds used last", "[prepare][cache]")
+TEST_CASE("the sample cache keeps this build's samples, those of the builds used last and those used lately",
+          "[prepare][cache]")
 {
   const fs::path cache = temp_path("cache_pruning");
   fs::remove_all(cache);
   fs::create_directories(cache);
-  fake_cache_entry(cache, "p-000000000001", "x", 4); // build x: an old entry and the newest of all
-  fake_cache_entry(cache, "p-000000000002", "x", 1);
-  fake_cache_entry(cache, "q-000000000003", "z", 2);
-  fake_cache_entry(cache, "p-000000000004", "y", 3);
-  fake_cache_entry(cache, "p-000000000005", "w", 5); // the build used longest ago
-  fake_cache_entry(cache, "p-000000000006", "w", 6);
-  fake_cache_entry(cache, "p-000000000007", "", 9); // this build, whenever it was used
-  // Not entries to prune: one still being prepared (no summary yet), a
-  // folder of another name, a summary of another kind of run.
-  fs::create_directories(cache / "p-000000000008");
-  std::ofstream(cache / "p-000000000008" / "sample.json") << "{}";
-  fake_cache_entry(cache, "notes", "w", 7);
-  fake_cache_entry(cache, "r-000000000009", "w", 8);
-  std::ofstream(cache / "r-000000000009" / "summary.json") << R"({"kind": "uniaxial", "provenance": {}})";
+  const auto old = fs::file_time_type::clock::now() - std::chrono::hours(24 * 60);
+  const std::chrono::hours week(24 * 7);
+  const fs::path v = fake_cache_entry(cache, "deck c", "v", 2); // used within the week
+  const fs::path x1 = fake_cache_entry(cache, "deck a", "x", 10); // build x: used 8 days ago, by its newer entry
+  const fs::path x2 = fake_cache_entry(cache, "deck b", "x", 8);
+  const fs::path z = fake_cache_entry(cache, "deck a", "z", 9);
+  const fs::path y = fake_cache_entry(cache, "deck a", "y", 11);
+  const fs::path w1 = fake_cache_entry(cache, "deck a", "w", 13); // the build used longest ago
+  const fs::path w2 = fake_cache_entry(cache, "deck b", "w", 14);
+  const fs::path failed = fake_cache_entry(cache, "deck d", "w", 15); // a preparation that stopped: no sample
+  fs::remove(failed / "sample.json");
+  fs::last_write_time(failed / "summary.json", old);
+  const fs::path ours = fake_cache_entry(cache, "deck a", "", 30);
 
-  verify::prune_sample_cache(cache.string(), 3);
-  for (const char *kept : {"p-000000000001", "p-000000000002", "q-000000000003", "p-000000000004", "p-000000000007",
-                           "p-000000000008", "notes", "r-000000000009"})
-    CHECK(fs::exists(cache / kept));
-  CHECK_FALSE(fs::exists(cache / "p-000000000005"));
-  CHECK_FALSE(fs::exists(cache / "p-000000000006"));
+  // Never to be removed: an entry still being prepared (its summary says
+  // only "running"), folders whose name is not the hash of their deck and
+  // build, a run of another kind.
+  const fs::path running = fake_cache_entry(cache, "deck e", "w", 20);
+  std::ofstream(running / "summary.json") << R"({"status": {"state": "running"}})";
+  fs::rename(fake_cache_entry(cache, "deck f", "w", 20), cache / "notes");
+  fs::rename(fake_cache_entry(cache, "deck g", "w", 20), cache / "p-0123456789ab");
+  const fs::path other_kind = fake_cache_entry(cache, "deck h", "w", 20);
+  std::ofstream(other_kind / "summary.json") << R"({"kind": "uniaxial", "provenance": {}})";
+  const auto others_stay = [&] {
+    for (const fs::path &p : {running, cache / "notes", cache / "p-0123456789ab", other_kind})
+      CHECK(fs::exists(p));
+  };
 
-  // Keeping one build: the most recently used (x), and this one.
-  verify::prune_sample_cache(cache.string(), 1);
-  CHECK(fs::exists(cache / "p-000000000001"));
-  CHECK(fs::exists(cache / "p-000000000007"));
-  CHECK_FALSE(fs::exists(cache / "q-000000000003"));
-  CHECK_FALSE(fs::exists(cache / "p-000000000004"));
+  verify::prune_sample_cache(cache.string(), 4, week); // v, x, z, y and ours
+  for (const fs::path &p : {v, x1, x2, z, y, ours})
+    CHECK(fs::exists(p));
+  for (const fs::path &p : {w1, w2, failed})
+    CHECK_FALSE(fs::exists(p));
+  others_stay();
+
+  verify::prune_sample_cache(cache.string(), 2, week); // v and x (8 days ago, not 10), and ours
+  for (const fs::path &p : {v, x1, x2, ours})
+    CHECK(fs::exists(p));
+  CHECK_FALSE(fs::exists(z));
+  CHECK_FALSE(fs::exists(y));
+
+  verify::prune_sample_cache(cache.string(), 0, week); // ours, and v used within the week
+  CHECK(fs::exists(ours));
+  CHECK(fs::exists(v));
+  CHECK_FALSE(fs::exists(x1));
+  CHECK_FALSE(fs::exists(x2));
+  others_stay();
   // A folder that is not there is no error.
-  verify::prune_sample_cache((cache / "absent").string(), 1);
+  verify::prune_sample_cache((cache / "absent").string(), 0, week);
 }
 
 TEST_CASE("a sample served from the cache is marked as used", "[prepare][cache]")

@@ -16,7 +16,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <regex>
+#include <optional>
 #include <sstream>
 
 namespace verify
@@ -203,6 +203,11 @@ std::string sample_cache_dir(const std::string &deck_path)
   return (slash == std::string::npos ? std::string(".") : deck_path.substr(0, slash)) + "/samples";
 }
 
+std::string sample_cache_hash(const std::string &resolved_deck, const nlohmann::json &build)
+{
+  return fnv1a_hex(resolved_deck + "\nbuild " + build.dump()).substr(0, 12);
+}
+
 namespace
 {
 /// The cache folder of a prepare deck with overrides.
@@ -212,70 +217,103 @@ std::string cache_entry(const Deck &deck, const std::string &path)
     throw DeckError(path + ": a deck of kind '" + deck.kind() + "': expected a prepare deck or a sample file");
   // Keyed by the resolved deck and the build, so that neither another deck
   // nor a changed procedure (or its arithmetic) is served a stale sample.
-  const std::string key = deck.resolved() + "\nbuild " + build_identity().dump();
-  return sample_cache_dir(path) + "/" + deck.name() + "-" + fnv1a_hex(key).substr(0, 12);
+  return sample_cache_dir(path) + "/" + deck.name() + "-" + sample_cache_hash(deck.resolved(), build_identity());
 }
 
-/// The build that made a cache entry, as one string: the build_identity()
-/// fields of its summary's provenance.  Empty when the folder is no
-/// finished entry of a prepare deck (no readable summary: one still being
-/// prepared, or not a sample at all).
-std::string entry_build(const std::filesystem::path &entry)
+/// The whole text of a small file, or nullopt when it is absent, no
+/// regular file, unreadable or larger than `max_bytes`.
+std::optional<std::string> small_file_text(const std::filesystem::path &file, std::uintmax_t max_bytes)
 {
-  std::ifstream in(entry / "summary.json");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec) || std::filesystem::file_size(file, ec) > max_bytes || ec)
+    return std::nullopt;
+  std::ifstream in(file, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
-  const nlohmann::json summary = nlohmann::json::parse(text.str(), nullptr, false);
-  if (!summary.is_object() || summary.value("kind", "") != "prepare" || !summary.contains("provenance") ||
-      !summary["provenance"].is_object())
-    return {};
+  if (!in)
+    return std::nullopt;
+  return text.str();
+}
+
+/// The build that made the sample cache entry `entry`, and when the entry
+/// was last used; nullopt unless the folder is provably one cache_entry()
+/// made: a finished prepare run (a summary of kind "prepare" with a
+/// provenance) whose name ends in the hash of its deck.prm and that build.
+struct CacheEntryUse
+{
+  nlohmann::json build;
+  std::filesystem::file_time_type used;
+};
+std::optional<CacheEntryUse> cache_entry_use(const std::filesystem::path &entry)
+{
+  namespace fs = std::filesystem;
+  constexpr std::uintmax_t most = 1 << 22; // bytes: a summary or resolved deck is a few kB
+  const std::string name = entry.filename().string();
+  const auto dash = name.rfind('-');
+  const std::optional<std::string> summary_text = small_file_text(entry / "summary.json", most);
+  const std::optional<std::string> deck_text = small_file_text(entry / "deck.prm", most);
+  if (dash == std::string::npos || !summary_text || !deck_text)
+    return std::nullopt;
+  const nlohmann::json summary = nlohmann::json::parse(*summary_text, nullptr, false);
+  if (!summary.is_object() || !summary.contains("kind") || summary["kind"] != "prepare" ||
+      !summary.contains("provenance") || !summary["provenance"].is_object())
+    return std::nullopt;
   const nlohmann::json &provenance = summary["provenance"];
   const nlohmann::json identity = build_identity(); // named: items() does not keep a temporary alive
-  nlohmann::json build = nlohmann::json::object();
+  CacheEntryUse use;
+  use.build = nlohmann::json::object();
   for (const auto &[key, value] : identity.items())
-    build[key] = provenance.contains(key) ? provenance[key] : nlohmann::json();
-  return build.dump();
+    use.build[key] = provenance.contains(key) ? provenance[key] : nlohmann::json();
+  if (name.substr(dash + 1) != sample_cache_hash(*deck_text, use.build))
+    return std::nullopt;
+  // The sample's time, renewed on each use; a preparation that failed has
+  // only its summary.
+  std::error_code ec;
+  use.used = fs::last_write_time(entry / "sample.json", ec);
+  if (ec)
+    use.used = fs::last_write_time(entry / "summary.json", ec);
+  if (ec)
+    return std::nullopt;
+  return use;
 }
 } // namespace
 
-void prune_sample_cache(const std::string &dir, std::size_t keep)
+void prune_sample_cache(const std::string &dir, std::size_t keep, std::chrono::hours grace)
 {
   namespace fs = std::filesystem;
   struct Entry
   {
     fs::path path;
     std::string build;
+    fs::file_time_type used;
   };
-  // Only folders named as cache_entry() names them: a DEMVV_CACHE folder
-  // may hold other things.
-  static const std::regex entry_name(".+-[0-9a-f]{12}");
   std::vector<Entry> entries;
-  std::map<std::string, fs::file_time_type> last_use;
+  std::map<std::string, fs::file_time_type> last_use; // by build
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
   {
-    if (!it->is_directory(ec) || !std::regex_match(it->path().filename().string(), entry_name))
+    std::error_code not_a_folder;
+    if (!it->is_directory(not_a_folder))
       continue;
-    const fs::file_time_type used = fs::last_write_time(it->path() / "sample.json", ec);
-    std::string build = ec ? std::string() : entry_build(it->path());
-    ec.clear();
-    if (build.empty())
+    const std::optional<CacheEntryUse> use = cache_entry_use(it->path());
+    if (!use)
       continue;
-    const auto [at, added] = last_use.emplace(build, used);
+    std::string build = use->build.dump();
+    const auto [at, added] = last_use.emplace(build, use->used);
     if (!added)
-      at->second = std::max(at->second, used);
-    entries.push_back({it->path(), std::move(build)});
+      at->second = std::max(at->second, use->used);
+    entries.push_back({it->path(), std::move(build), use->used});
   }
   std::vector<std::pair<fs::file_time_type, std::string>> builds;
   for (const auto &[build, used] : last_use)
     builds.emplace_back(used, build);
   std::sort(builds.begin(), builds.end(), std::greater<>());
-  nlohmann::json ours = build_identity();
-  std::vector<std::string> kept = {ours.dump()};
+  std::vector<std::string> kept = {build_identity().dump()};
   for (std::size_t k = 0; k < builds.size() && k < keep; ++k)
     kept.push_back(builds[k].second);
+  const fs::file_time_type since = fs::file_time_type::clock::now() - grace;
   for (const Entry &e : entries)
-    if (std::find(kept.begin(), kept.end(), e.build) == kept.end())
+    if (e.used < since && std::find(kept.begin(), kept.end(), e.build) == kept.end())
       fs::remove_all(e.path, ec);
 }
 
@@ -302,7 +340,14 @@ std::string cached_sample_file(const std::string &path, const std::vector<std::s
   const PrepareResult r = run_prepare(deck, {dir, omp_get_max_threads(), progress});
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());
-  prune_sample_cache(sample_cache_dir(path), cached_builds);
+  try
+  {
+    prune_sample_cache(sample_cache_dir(path), cached_builds, cache_grace);
+  }
+  catch (const std::exception &)
+  {
+    // Housekeeping only: a cache that could not be pruned serves as before.
+  }
   return file;
 }
 

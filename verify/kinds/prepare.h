@@ -17,6 +17,7 @@
 #include "verify/run/run.h"
 #include "verify/io/sample_file.h"
 
+#include <chrono>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -50,17 +51,27 @@ std::string sample_cache_dir(const std::string &deck_path);
 /// std::runtime_error.
 std::string cached_sample_file(const std::string &path, const std::vector<std::string> &overrides, bool progress);
 
-/// How many builds' samples the cache keeps: cached_sample_file() prunes
-/// the others after each preparation.
-constexpr std::size_t cached_builds = 3;
+/// The 12 hex digits that end the name of the cache entry of a prepare
+/// deck (its resolved text) made by a build (a build_identity()).
+std::string sample_cache_hash(const std::string &resolved_deck, const nlohmann::json &build);
 
-/// Removes from the sample cache folder `dir` the entries (folders named
-/// <deck>-<hash> holding a finished prepare run) made by builds other than
-/// this one and the `keep` most recently used.  An entry's last use is the
-/// time of its sample.json, which cached_sample_file() renews; a build's is
-/// that of its most recently used entry.  Entries being prepared (no
-/// summary yet) and folders of other names are left alone.
-void prune_sample_cache(const std::string &dir, std::size_t keep);
+/// How many builds' samples the cache keeps, and how long any sample stays
+/// after its last use whatever its build (a sweep of an older build may
+/// still be reading it): cached_sample_file() prunes the rest after each
+/// preparation.
+constexpr std::size_t cached_builds = 3;
+constexpr std::chrono::hours cache_grace{24 * 7};
+
+/// Removes from the sample cache folder `dir` the entries made by builds
+/// other than this one and the `keep` most recently used, and not used for
+/// `grace`.  An entry's last use is the time of its sample.json, which
+/// cached_sample_file() renews (of its summary.json if its preparation
+/// failed); a build's is that of its most recently used entry.  Only
+/// folders proved to be cache entries are touched: a finished prepare run
+/// whose name ends in sample_cache_hash() of its deck.prm and its build.
+/// Entries being prepared, entries of builds that named them otherwise,
+/// and anything else are left alone.
+void prune_sample_cache(const std::string &dir, std::size_t keep, std::chrono::hours grace);
 
 /// Where cached_sample_file() keeps that sample, prepared or not.
 std::string cached_sample_file_name(const std::string &path, const std::vector<std::string> &overrides);
