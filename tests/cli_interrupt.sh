@@ -41,10 +41,15 @@ for law in linear burgers; do
     [ $code -eq $expected ] || fail "$law $signal: exit code $code, expected $expected ($(cat "$work/err"))"
     grep -q '"state": "interrupted"' "$dir/summary.json" || fail "$law $signal: summary.json does not say interrupted"
     [ -f "$dir/checkpoint/driver.json" ] || fail "$law $signal: no checkpoint"
-    # The command the message gives, run as given: it must repeat the deck's
-    # --set values and the thread count, or the resume is refused.
+    # The command the message gives, run as given (it must repeat the
+    # deck's --set values: a resume with others is refused); summary.json
+    # gives the same.
     continue_with=$(sed -n 's/.*; continue with: demvv //p' "$work/err")
     [ -n "$continue_with" ] || fail "$law $signal: the message does not say how to resume: $(cat "$work/err")"
+    python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["status"]["resume"])' "$dir/summary.json" \
+      >"$work/resume_in_summary"
+    [ "$(cat "$work/resume_in_summary")" = "demvv $continue_with" ] ||
+      fail "$law $signal: summary.json resumes with '$(cat "$work/resume_in_summary")', the message with 'demvv $continue_with'"
     run_box --set run/duration=0.4 --resume "$dir" 2>"$work/err_other"
     [ $? -eq 2 ] || fail "$law $signal: a resume with another deck was not refused with exit code 2"
     grep -q "another deck" "$work/err_other" || fail "$law $signal: the refusal does not say why: $(cat "$work/err_other")"

@@ -22,42 +22,15 @@ namespace
 {
 const char *signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
 
-/// `text` as one word of a POSIX shell's command line.
-std::string shell_word(const std::string &text)
-{
-  static const std::string plain = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789/._-=+,:@%";
-  if (!text.empty() && text.find_first_not_of(plain) == std::string::npos)
-    return text;
-  std::string word = "'";
-  for (const char c : text)
-    word += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return word + "'";
-}
-
-/// The command that continues a stopped run: the deck, its --set values
-/// and thread ceiling as the run was given them (a resume with other
-/// values is refused), and the run directory.
-std::string resume_command(const std::string &deck_path, const std::vector<std::string> &overrides,
-                           const RunOptions &o)
-{
-  std::string command = "demvv run " + shell_word(deck_path);
-  for (const std::string &assignment : overrides)
-    command += " --set " + shell_word(assignment);
-  if (o.most_threads > 0)
-    command += " --threads " + std::to_string(o.most_threads);
-  return command + " --resume " + shell_word(o.out_dir);
-}
-
 /// The one line a finished run leaves on stderr.
-void tell(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &o,
-          const RunStatus &status)
+void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
 {
   if (status.fault)
     std::cerr << "demvv: " << status.diagnostic() << "; outputs up to that point are in " << o.out_dir << "\n";
   else if (status.interrupted_by || status.paused)
     std::cerr << "demvv: " << (status.paused ? "paused" : "interrupted by ") << (status.paused ? "" : signal_name(status.interrupted_by))
               << " after step " << status.steps << "; outputs up to that point and a checkpoint are in " << o.out_dir
-              << "; continue with: " << resume_command(deck_path, overrides, o) << "\n";
+              << "; continue with: " << resume_command(deck, o) << "\n";
   else
     std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
               << o.out_dir << "\n";
@@ -157,7 +130,7 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   }
   if (status.writes_run_directory)
     draw_run_figures(o.out_dir, false);
-  tell(deck_path, overrides, o, status);
+  tell(deck, o, status);
   return status.exit_code();
 }
 

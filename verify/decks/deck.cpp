@@ -126,6 +126,7 @@ struct Deck::Impl final : DeckSchema
   std::vector<std::string> stack;
   std::string kind;
   std::string path;
+  std::vector<std::string> overrides; // the --set values it was read with, in order
 
   std::string full(const std::string &name) const
   {
@@ -492,11 +493,13 @@ Deck Deck::from_file(const std::string &path, const std::vector<std::string> &ov
       throw DeckError("--set '" + o + "': the kind of a deck cannot be overridden");
     deck.impl_->assign(key, o.substr(eq + 1), {"--set " + key});
   }
+  deck.impl_->overrides = overrides;
   return deck;
 }
 
 const std::string &Deck::kind() const { return impl_->kind; }
 const std::string &Deck::path() const { return impl_->path; }
+const std::vector<std::string> &Deck::overrides() const { return impl_->overrides; }
 
 std::string Deck::directory() const
 {
@@ -555,7 +558,10 @@ std::array<double, 3> Deck::vector3(const std::string &key) const
   return {{v.at(0), v.at(1), v.at(2)}};
 }
 
-DeckRecord::DeckRecord(const Deck &deck) : path(deck.path()), name(deck.name()), resolved(deck.resolved()) {}
+DeckRecord::DeckRecord(const Deck &deck)
+  : path(deck.path()), name(deck.name()), resolved(deck.resolved()), overrides(deck.overrides())
+{
+}
 
 void fail_key(const std::string &deck_path, const std::string &key, const std::string &value,
               const std::string &expected)

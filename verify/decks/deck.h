@@ -110,6 +110,7 @@ struct DeckRecord
   std::string path;     ///< "" for a defaults deck
   std::string name;     ///< Deck::name()
   std::string resolved; ///< Deck::resolved()
+  std::vector<std::string> overrides; ///< Deck::overrides()
 
   DeckRecord() = default;
   DeckRecord(const Deck &deck); // NOLINT: a deck is a record of itself
@@ -131,6 +132,9 @@ public:
   const std::string &kind() const;
   /// The deck file ("" for a defaults deck).
   const std::string &path() const;
+  /// The overrides ("section/key=value", as --set) from_file() applied, in
+  /// order; set() adds none.
+  const std::vector<std::string> &overrides() const;
   /// Directory relative file names in the deck are resolved against.
   std::string directory() const;
   /// A short name for run directories: the file stem, or the parent

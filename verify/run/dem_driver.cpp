@@ -449,7 +449,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   summary["status"] = status.to_json();
   summary["status"]["threads"] = governor.to_json();
   if (dir && stopped_early)
-    summary["status"]["resume"] = "demvv run " + dir->deck_path() + " --resume " + options.out_dir;
+    summary["status"]["resume"] = resume_command(dir->deck(), options);
   if (dir)
     dir->write_summary(summary);
   return {status, summary};

@@ -123,7 +123,7 @@ void record_failure(RunStatus &status, const continuum::NumericalFailure &failur
 }
 
 RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed)
-  : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_path_(deck.path.empty() ? "DECK" : deck.path)
+  : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_(deck)
 {
   make_directories(dir);
   const std::string &resolved = deck.resolved;
@@ -132,6 +132,31 @@ RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int t
   provenance_["resolved_deck"] = "deck.prm";
   write_atomically(path("deck.prm"), resolved);
   write_summary({{"status", {{"state", "running"}}}});
+}
+
+namespace
+{
+/// `text` as one word of a POSIX shell's command line.
+std::string shell_word(const std::string &text)
+{
+  static const std::string plain = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789/._-=+,:@%";
+  if (!text.empty() && text.find_first_not_of(plain) == std::string::npos)
+    return text;
+  std::string word = "'";
+  for (const char c : text)
+    word += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return word + "'";
+}
+} // namespace
+
+std::string resume_command(const DeckRecord &deck, const RunOptions &options)
+{
+  std::string command = "demvv run " + (deck.path.empty() ? std::string("DECK") : shell_word(deck.path));
+  for (const std::string &assignment : deck.overrides)
+    command += " --set " + shell_word(assignment);
+  if (options.most_threads > 0)
+    command += " --threads " + std::to_string(options.most_threads);
+  return command + " --resume " + shell_word(options.out_dir);
 }
 
 void RunDirectory::write_summary(nlohmann::json summary) const

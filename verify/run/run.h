@@ -81,12 +81,13 @@ public:
   void write_summary(nlohmann::json summary) const;
   /// Identifies the resolved deck (a resumed run must have the same).
   const std::string &deck_hash() const { return deck_hash_; }
-  /// The deck file the run was started from ("" for a defaults deck).
-  const std::string &deck_path() const { return deck_path_; }
+  /// The deck the run was started from.
+  const DeckRecord &deck() const { return deck_; }
 
 private:
   std::string dir_;
-  std::string deck_hash_, deck_path_;
+  std::string deck_hash_;
+  DeckRecord deck_;
   nlohmann::json provenance_;
 };
 
@@ -145,6 +146,11 @@ bool claim_resumable_directory(const std::string &dir, bool replace, const std::
                                const std::string &marker);
 
 /// Records a fault into a status (from a NumericalFault).
+/// The command that continues a stopped run of `deck` in options.out_dir:
+/// the deck file, its --set values (a resume with others is refused), the
+/// thread ceiling when one was given, each word quoted for a POSIX shell.
+std::string resume_command(const DeckRecord &deck, const RunOptions &options);
+
 void record_fault(RunStatus &status, const dem::NumericalFault &fault);
 /// Records a continuum run's failure into a status: its step (time step or
 /// ODE output), simulated time [s] and message; no particle.
