@@ -29,15 +29,24 @@ ll=${LL_BYTES:-33554432}
 [ "$steps" -ge 1 ] && [ "$steps" -le 66 ] || { echo "memory_traffic.sh: STEPS must be 1 to 66" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+fail() { echo "memory_traffic.sh: $*" >&2; exit 1; }
+# Prints the last-level data-cache misses of a run of STEPS timed steps.
 misses() {
   valgrind --tool=cachegrind --cache-sim=yes --I1=32768,8,64 --D1=32768,8,64 --LL="$ll",16,64 \
-    --cachegrind-out-file="$work/out" "$bench" "$balls" 1 "$1" > "$work/log" 2>&1
+    --cachegrind-out-file="$work/out" "$bench" "$balls" 1 "$1" > "$work/log" 2>&1 ||
+    { cat "$work/log" >&2; fail "valgrind or the bench failed (above)"; }
   grep 'demvv_dem_bench:' "$work/log" | sed -n 's/.*balls \([0-9]*\),.*/\1/p' > "$work/balls"
   sed -n 's/.*LLd misses: *\([0-9,]*\).*/\1/p' "$work/log" | tr -d ,
 }
+command -v valgrind > /dev/null || fail "valgrind not found (Debian: apt-get install valgrind)"
 short=$(misses "$steps")
 long=$(misses $((3 * steps)))
 n=$(cat "$work/balls")
+for value in "$short" "$long" "$n"; do
+  case $value in '' | *[!0-9]*) fail "could not read cachegrind's LLd misses or the ball count" ;; esac
+done
 echo "# $(uname -n), $(date -u '+%Y-%m-%d %H:%M UTC'), $bench, simulated last-level cache $ll bytes"
 awk -v a="$short" -v b="$long" -v n="$n" -v s="$steps" 'BEGIN {
   lines = (b - a) / (8 * s)
