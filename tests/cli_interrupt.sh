@@ -4,7 +4,8 @@
 # gives the series of the run that never stopped, byte for byte, with the
 # linear law and with Burger's contacts (whose element state the checkpoint
 # must carry), by the command its message gives; a resume with another
-# deck or on another build is refused.
+# deck or on another build is refused; a comparison says it cannot be
+# resumed.
 # Usage: cli_interrupt.sh DEMVV CASES_DIR
 set -u
 demvv=$1
@@ -75,4 +76,22 @@ EOF
 done
 run_box --resume "$work/stopped_linear_INT" 2>/dev/null
 [ $? -eq 2 ] || fail "a finished run (its checkpoint removed) was resumed"
+
+# A comparison cannot be resumed: its message says so, and none of its
+# parts offers a resume command of its own.
+dir=$work/compare
+"$demvv" run "$cases/c14_compare_modified_burgers/case.prm" --out "$dir" --threads 1 --quiet 2>"$work/err_compare" &
+pid=$!
+tries=0
+while [ "$(grep -vc '^#' "$dir/calibration/series.csv" 2>/dev/null || echo 0)" -lt 5 ]; do
+  tries=$((tries + 1))
+  [ $tries -gt 3000 ] && fail "the comparison wrote no rows within five minutes"
+  sleep 0.1
+done
+kill -s INT $pid
+wait $pid
+code=$?
+[ $code -eq 130 ] || fail "the comparison: exit code $code, expected 130 ($(cat "$work/err_compare"))"
+grep -q "cannot be resumed" "$work/err_compare" || fail "the comparison's message offers a resume: $(cat "$work/err_compare")"
+grep -rq '"resume"' "$dir" --include=summary.json && fail "a part of the comparison offers a resume command"
 echo "$passed passed, 0 failed"

@@ -245,6 +245,7 @@ TEST_CASE("the sample cache keeps this build's samples, those of the builds used
   const auto old = fs::file_time_type::clock::now() - std::chrono::hours(24 * 60);
   const std::chrono::hours week(24 * 7);
   const fs::path v = fake_cache_entry(cache, "deck c", "v", 2); // used within the week
+  const fs::path v_old = fake_cache_entry(cache, "deck a", "v", 30); // its build too, but not this entry
   const fs::path x1 = fake_cache_entry(cache, "deck a", "x", 10); // build x: used 8 days ago, by its newer entry
   const fs::path x2 = fake_cache_entry(cache, "deck b", "x", 8);
   const fs::path z = fake_cache_entry(cache, "deck a", "z", 9);
@@ -259,19 +260,32 @@ TEST_CASE("the sample cache keeps this build's samples, those of the builds used
   // Never to be removed: an entry still being prepared (its summary says
   // only "running"), folders whose name is not the hash of their deck and
   // build, a run of another kind.
-  const fs::path running = fake_cache_entry(cache, "deck e", "w", 20);
-  std::ofstream(running / "summary.json") << R"({"status": {"state": "running"}})";
+  // Each is an old entry of build w but for what the comment names.
+  const auto rewrite_summary = [&](const fs::path &entry, const auto &change) {
+    std::ifstream in(entry / "summary.json");
+    nlohmann::json summary = nlohmann::json::parse(in);
+    in.close();
+    change(summary);
+    std::ofstream(entry / "summary.json") << summary.dump();
+    fs::last_write_time(entry / "summary.json", old);
+  };
+  const fs::path running = fake_cache_entry(cache, "deck e", "w", 20); // as RunDirectory starts it
+  fs::remove(running / "sample.json");
+  rewrite_summary(running, [](nlohmann::json &s) {
+    s.erase("kind");
+    s["status"] = {{"state", "running"}};
+  });
   fs::rename(fake_cache_entry(cache, "deck f", "w", 20), cache / "notes");
   fs::rename(fake_cache_entry(cache, "deck g", "w", 20), cache / "p-0123456789ab");
   const fs::path other_kind = fake_cache_entry(cache, "deck h", "w", 20);
-  std::ofstream(other_kind / "summary.json") << R"({"kind": "uniaxial", "provenance": {}})";
+  rewrite_summary(other_kind, [](nlohmann::json &s) { s["kind"] = "uniaxial"; });
   const auto others_stay = [&] {
     for (const fs::path &p : {running, cache / "notes", cache / "p-0123456789ab", other_kind})
       CHECK(fs::exists(p));
   };
 
   verify::prune_sample_cache(cache.string(), 4, week); // v, x, z, y and ours
-  for (const fs::path &p : {v, x1, x2, z, y, ours})
+  for (const fs::path &p : {v, v_old, x1, x2, z, y, ours})
     CHECK(fs::exists(p));
   for (const fs::path &p : {w1, w2, failed})
     CHECK_FALSE(fs::exists(p));
@@ -283,9 +297,10 @@ TEST_CASE("the sample cache keeps this build's samples, those of the builds used
   CHECK_FALSE(fs::exists(z));
   CHECK_FALSE(fs::exists(y));
 
-  verify::prune_sample_cache(cache.string(), 0, week); // ours, and v used within the week
+  verify::prune_sample_cache(cache.string(), 0, week); // ours, and the entry of v used within the week
   CHECK(fs::exists(ours));
   CHECK(fs::exists(v));
+  CHECK_FALSE(fs::exists(v_old));
   CHECK_FALSE(fs::exists(x1));
   CHECK_FALSE(fs::exists(x2));
   others_stay();

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <filesystem>
 #include <iostream>
 
 namespace verify
@@ -26,14 +27,25 @@ const char *signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signa
 void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
 {
   if (status.fault)
+  {
     std::cerr << "demvv: " << status.diagnostic() << "; outputs up to that point are in " << o.out_dir << "\n";
-  else if (status.interrupted_by || status.paused)
-    std::cerr << "demvv: " << (status.paused ? "paused" : "interrupted by ") << (status.paused ? "" : signal_name(status.interrupted_by))
-              << " after step " << status.steps << "; outputs up to that point and a checkpoint are in " << o.out_dir
-              << "; continue with: " << resume_command(deck, o) << "\n";
-  else
+    return;
+  }
+  if (!status.interrupted_by && !status.paused)
+  {
     std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
               << o.out_dir << "\n";
+    return;
+  }
+  const std::string stopped =
+    status.paused ? std::string("paused") : std::string("interrupted by ") + signal_name(status.interrupted_by);
+  if (std::filesystem::exists(checkpoint_state_file(o.out_dir)))
+    std::cerr << "demvv: " << stopped << " after step " << status.steps
+              << "; outputs up to that point and a checkpoint are in " << o.out_dir
+              << "; continue with: " << resume_command(deck, o) << "\n";
+  else
+    std::cerr << "demvv: " << stopped << "; outputs up to that point are in " << o.out_dir
+              << "; this kind of run cannot be resumed: run it again with --replace\n";
 }
 
 /// After an output could not be written, summary.json says so instead of

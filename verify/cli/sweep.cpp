@@ -702,6 +702,7 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
         RunOptions member_run = member_options;
         member_run.out_dir = dir;
         member_run.progress = false;
+        member_run.resumable_alone = false;
         const RunStatus status = kind->run(Deck::from_file(plan.base_deck, m.overrides), member_run);
         interrupted = status.interrupted_by;
         if (status.fault)

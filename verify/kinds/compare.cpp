@@ -148,6 +148,7 @@ RunOptions part_options(const RunOptions &options, const std::string &part)
   o.out_dir = options.out_dir.empty() ? "" : options.out_dir + "/" + part;
   o.resume = false;
   o.pause_after = 0;
+  o.resumable_alone = false;
   return o;
 }
 

@@ -70,7 +70,8 @@ constexpr std::chrono::hours cache_grace{24 * 7};
 /// folders proved to be cache entries are touched: a finished prepare run
 /// whose name ends in sample_cache_hash() of its deck.prm and its build.
 /// Entries being prepared, entries of builds that named them otherwise,
-/// and anything else are left alone.
+/// and anything else are left alone.  `grace` is at most a few years (the
+/// file clock's range).
 void prune_sample_cache(const std::string &dir, std::size_t keep, std::chrono::hours grace);
 
 /// Where cached_sample_file() keeps that sample, prepared or not.

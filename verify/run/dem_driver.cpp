@@ -277,7 +277,8 @@ void declare_checkpoint_interval(DeckSchema &s)
 {
   s.real("checkpoint interval", 0, 0, std::numeric_limits<double>::infinity(), "s",
          "Wall-clock time between checkpoints (checkpoint/ in the run directory), from which `demvv run DECK "
-         "--resume RUN_DIR` continues a killed run bit for bit; 0: only when interrupted (SIGINT, SIGTERM).");
+         "--resume RUN_DIR` (with the run's --set values) continues a killed run bit for bit; 0: only when "
+         "interrupted (SIGINT, SIGTERM).");
 }
 
 void ContactResolution::observe(const dem::Simulation &sim)
@@ -448,7 +449,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
     std::cerr << "demvv: warning: " << warning << "\n";
   summary["status"] = status.to_json();
   summary["status"]["threads"] = governor.to_json();
-  if (dir && stopped_early)
+  if (dir && stopped_early && options.resumable_alone)
     summary["status"]["resume"] = resume_command(dir->deck(), options);
   if (dir)
     dir->write_summary(summary);

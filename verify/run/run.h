@@ -38,6 +38,10 @@ struct RunOptions
   /// thread and this many (ThreadGovernor): --threads N, or a sweep's share
   /// of the cores that demvv chose.  0 with `threads` > 0: exactly that many.
   int most_threads = 0;
+  /// Whether a stopped run can be continued on its own, by `demvv run DECK
+  /// --resume out_dir`: false for a part of a larger run (a comparison's
+  /// parts, a sweep's members), which that run starts again instead.
+  bool resumable_alone = true;
 
   /// Options that start a run on `threads` and never use more (0: demvv's
   /// choice): what --threads means.
@@ -145,12 +149,12 @@ void empty_directory(const std::string &dir, const std::string &what);
 bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what,
                                const std::string &marker);
 
-/// Records a fault into a status (from a NumericalFault).
 /// The command that continues a stopped run of `deck` in options.out_dir:
 /// the deck file, its --set values (a resume with others is refused), the
 /// thread ceiling when one was given, each word quoted for a POSIX shell.
 std::string resume_command(const DeckRecord &deck, const RunOptions &options);
 
+/// Records a fault into a status (from a NumericalFault).
 void record_fault(RunStatus &status, const dem::NumericalFault &fault);
 /// Records a continuum run's failure into a status: its step (time step or
 /// ODE output), simulated time [s] and message; no particle.
