@@ -61,6 +61,17 @@ fs::path fake_cache_entry(const fs::path &cache, const std::string &deck, const 
   return entry;
 }
 
+/// A small prepare deck (200 balls, seed 5) written as small.prm into the
+/// emptied folder `dir`; its path.
+std::string small_prepare_deck_file(const fs::path &dir)
+{
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string deck = (dir / "small.prm").string();
+  std::ofstream(deck) << "set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n";
+  return deck;
+}
+
 verify::Deck small_prepare_deck()
 {
   verify::Deck d = verify::Deck::defaults("prepare");
@@ -211,10 +222,7 @@ TEST_CASE("preparing a cached sample leaves the caller's thread count as it was 
   unsetenv("DEMVV_CACHE");
   unsetenv("OMP_NUM_THREADS");
   const fs::path dir = temp_path("cached");
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string deck = (dir / "small.prm").string();
-  std::ofstream(deck) << "set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n";
+  const std::string deck = small_prepare_deck_file(dir);
   // A count idle_cores(), which a preparation left to itself would take,
   // can never return: more threads than cores.
   const int before = omp_get_max_threads();
@@ -312,10 +320,7 @@ TEST_CASE("a sample served from the cache is marked as used", "[prepare][cache]"
 {
   unsetenv("DEMVV_CACHE");
   const fs::path dir = temp_path("cache_use");
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string deck = (dir / "small.prm").string();
-  std::ofstream(deck) << "set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n";
+  const std::string deck = small_prepare_deck_file(dir);
   // A stand-in for a prepared sample: a hit never reads it.
   const fs::path file = verify::cached_sample_file_name(deck, {});
   fs::create_directories(file.parent_path());

@@ -11,13 +11,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <optional>
-#include <sstream>
 
 namespace verify
 {
@@ -220,19 +218,18 @@ std::string cache_entry(const Deck &deck, const std::string &path)
   return sample_cache_dir(path) + "/" + deck.name() + "-" + sample_cache_hash(deck.resolved(), build_identity());
 }
 
-/// The whole text of a small file, or nullopt when it is absent, no
-/// regular file, unreadable or larger than `max_bytes`.
+/// The whole text of a small file (read_input), or nullopt when it cannot
+/// be read or is larger than `max_bytes`.
 std::optional<std::string> small_file_text(const std::filesystem::path &file, std::uintmax_t max_bytes)
 {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec) || std::filesystem::file_size(file, ec) > max_bytes || ec)
+  try
+  {
+    return read_input(file.string(), "file", max_bytes);
+  }
+  catch (const DeckError &)
+  {
     return std::nullopt;
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in)
-    return std::nullopt;
-  return text.str();
+  }
 }
 
 /// The build that made the sample cache entry `entry`, and when the entry
