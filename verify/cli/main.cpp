@@ -2,6 +2,7 @@
 //
 //   demvv run DECK [--out DIR [--replace]] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
 //   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
+//   demvv time-step BASE_DECK [--safety s1,s2,s3,...] [--seeds N] [--set SECTION/KEY=VALUE]... --out DIR
 //   demvv calibrate BASE_DECK --fit KEY[+KEY...]=START --target QUANTITY=VALUE[,U] [--at KEY=VALUE] [--seeds N] --out DIR
 //   demvv defaults KIND
 //   demvv verify [--quick|--full] [--only PATTERN] [--out DIR] [--cases DIR] [--threads N]
@@ -21,6 +22,7 @@
 #include "verify/cli/commands.h"
 #include "verify/cli/calibrate.h"
 #include "verify/cli/sweep.h"
+#include "verify/cli/time_step_study.h"
 #include "verify/decks/deck.h"
 #include "verify/io/output.h"
 
@@ -103,6 +105,25 @@ int main(int argc, char **argv)
   bool sweep_quiet = false;
   sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");
   sweep_cmd->footer(kinds_help);
+
+  verify::TimeStepStudyOptions time_step;
+  auto *time_step_cmd = app.add_subcommand(
+    "time-step", "Measure the time-step error of a uniaxial deck's bulk results on seed ensembles (the same seeds at "
+                 "every time-step safety); time_step_study.csv/.json in --out (rerun to resume)");
+  time_step_cmd->add_option("BASE_DECK", time_step.base_deck, "The uniaxial deck every member starts from")->required();
+  time_step_cmd->add_option("--safety", time_step.safety_text,
+                            "Time-step safeties (fractions of the critical step bound), coarse to fine, at least "
+                            "three in (0, 1] (default 0.8,0.4,0.2)")
+    ->delimiter(',');
+  time_step_cmd->add_option("--seeds", time_step.seeds, "Seeds per level, at least 2 (default 5)");
+  time_step_cmd->add_option("--set", time_step.sets, "Set a deck entry in every member: SECTION/KEY=VALUE (repeatable)");
+  time_step_cmd->add_option("--out", time_step.settings.out_dir, "Study directory: new, empty, or this study's (resumed)")
+    ->required();
+  time_step_cmd->add_flag("--replace", time_step.settings.replace, "Start the study in --out over");
+  time_step_cmd->add_option("--threads", time_step.settings.threads, "OpenMP threads per member, at most")
+    ->check(CLI::Range(1, 1024));
+  bool time_step_quiet = false;
+  time_step_cmd->add_flag("--quiet", time_step_quiet, "No progress line and no opening line");
 
   verify::CalibrationOptions calibration;
   auto *calibrate_cmd = app.add_subcommand(
@@ -228,6 +249,13 @@ int main(int argc, char **argv)
       for (int i = 0; i < argc; ++i)
         sweep.settings.command_line += (i ? " " : "") + std::string(argv[i]);
       return verify::command_sweep(sweep);
+    }
+    if (time_step_cmd->parsed())
+    {
+      time_step.settings.progress = !time_step_quiet;
+      for (int i = 0; i < argc; ++i)
+        time_step.settings.command_line += (i ? " " : "") + std::string(argv[i]);
+      return verify::command_time_step(time_step);
     }
     if (calibrate_cmd->parsed())
     {

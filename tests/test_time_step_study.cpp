@@ -1,0 +1,96 @@
+// The time-step study's statistics (verify/cli/time_step_study.h) on
+// synthetic ensembles whose answer is known: q_ij = q* + C s_i^p + e_j +
+// n_ij, with a seed effect e_j common to every level (the packing, which
+// common random numbers cancel) and level noise n_ij.
+#include "verify/cli/time_step_study.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace
+{
+const std::vector<double> safety = {0.8, 0.4, 0.2, 0.1};
+const std::vector<double> seed_effect = {0.31, -0.52, 0.12, 0.44, -0.27, 0.05};
+
+/// values[level][seed]; `noise` scales a fixed, zero-free pattern.
+std::vector<std::vector<double>> ensemble(double exact, double c, double p, double noise)
+{
+  std::vector<std::vector<double>> v(safety.size());
+  for (std::size_t i = 0; i < safety.size(); ++i)
+    for (std::size_t j = 0; j < seed_effect.size(); ++j)
+      v[i].push_back(exact + c * std::pow(safety[i], p) + seed_effect[j] +
+                     noise * std::sin(1.7 * double(i + 1) + 2.3 * double(j + 1)));
+  return v;
+}
+} // namespace
+
+TEST_CASE("time-step study: an exact power law is recovered, whatever the seed effect", "[verify][time_step]")
+{
+  // No level noise: the paired changes are exact, so are the order
+  // (round-off: a few ulp of logarithms) and Richardson's value (exact
+  // for a single power term).
+  const verify::TimeStepAnalysis a = verify::analyse_time_step(safety, ensemble(10.0, 2.0, 1.0, 0.0));
+  REQUIRE(a.change.size() == 3);
+  REQUIRE(a.order.size() == 2);
+  for (const verify::LevelChange &c : a.change)
+    CHECK(c.resolved);
+  CHECK_THAT(a.change[0].difference.mean, WithinRel(-0.8, 1e-12));
+  for (const verify::ObservedOrder &o : a.order)
+  {
+    REQUIRE(o.resolved);
+    CHECK_THAT(o.order, WithinAbs(1.0, 1e-9));
+  }
+  // Richardson removes C s: q* plus the seeds' mean effect, 0.13 / 6.
+  CHECK_THAT(a.extrapolated, WithinRel(10.0 + 0.13 / 6, 1e-12));
+}
+
+TEST_CASE("time-step study: order and its interval under level noise", "[verify][time_step]")
+{
+  // C s^2 with C = 1: changes 0.48, 0.12, 0.03; noise 1e-3 leaves them
+  // resolved, the order within its own interval of 2.
+  const verify::TimeStepAnalysis a = verify::analyse_time_step(safety, ensemble(5.0, 1.0, 2.0, 1e-3));
+  for (const verify::LevelChange &c : a.change)
+    CHECK(c.resolved);
+  for (const verify::ObservedOrder &o : a.order)
+  {
+    REQUIRE(o.resolved);
+    CHECK(o.low < 2.0);
+    CHECK(o.high > 2.0);
+    CHECK(o.high - o.low < 0.5);
+  }
+  // Finest level's bound: 1.25 |d| / (2^p - 1) with the resolved order.
+  const double d = a.change.back().difference.mean, p = a.order.back().order;
+  CHECK_THAT(a.error_bound.back(), WithinRel(1.25 * std::abs(d) / (std::pow(2.0, p) - 1), 1e-12));
+  // Coarser levels carry more: the bound grows with the safety.
+  CHECK(a.error_bound[0] > a.error_bound[1]);
+  CHECK(a.error_bound[1] > a.error_bound[2]);
+}
+
+TEST_CASE("time-step study: a change within the noise is not resolved and gives no order", "[verify][time_step]")
+{
+  const verify::TimeStepAnalysis a = verify::analyse_time_step(safety, ensemble(5.0, 0.0, 1.0, 1e-2));
+  for (const verify::LevelChange &c : a.change)
+    CHECK_FALSE(c.resolved);
+  for (const verify::ObservedOrder &o : a.order)
+    CHECK_FALSE(o.resolved);
+  CHECK(std::isnan(a.extrapolated));
+  // The finest level's bound is the last change's bound over (r - 1) = 1.
+  CHECK_THAT(a.error_bound.back(), WithinRel(a.change.back().bound(), 1e-14));
+  for (double b : a.error_bound)
+    CHECK(b > 0);
+}
+
+TEST_CASE("time-step study: a missing member drops out of the pairs that need it", "[verify][time_step]")
+{
+  auto v = ensemble(10.0, 2.0, 1.0, 0.0);
+  v[1][3] = std::nan("");
+  const verify::TimeStepAnalysis a = verify::analyse_time_step(safety, v);
+  CHECK(a.level[1].n == seed_effect.size() - 1);
+  CHECK(a.change[0].difference.n == seed_effect.size() - 1);
+  CHECK(a.change[2].difference.n == seed_effect.size());
+}
