@@ -1,7 +1,8 @@
 #!/bin/sh
 # Run directories: `demvv run` refuses a non-empty --out (exit 2, the files
 # there untouched) unless --replace, which replaces a run directory whole
-# (stale files gone) and only once the deck has passed its checks; --resume
+# (its stale outputs gone, a user's own files kept) and only once the deck
+# has passed its checks; --resume
 # still continues in its own directory; a run directory's deck.prm runs
 # again from any folder with the same results; a prepare deck's sample is
 # cached beside the deck whatever the current folder (or in $DEMVV_CACHE);
@@ -47,11 +48,11 @@ grep -q "run directory '$work/r' is not empty" "$work/err" && grep -q -- "--repl
   fail "the refusal does not name the directory and --replace: $(cat "$work/err")"
 [ -f "$work/r/stray.txt" ] && cmp -s "$work/r/summary.json" "$work/summary_before" || fail "the refusal touched the old run"
 
-# --replace empties only a run directory (one holding deck.prm), never an
-# ordinary folder, and never a path that is not a directory.
+# --replace empties only a run directory (one holding demvv's marker), never
+# an ordinary folder, and never a path that is not a directory.
 mkdir "$work/notes" && echo keep > "$work/notes/keep.txt"
 run "$impact" --out "$work/notes" --replace 2>"$work/err"
-[ $? -eq 2 ] && grep -q "no deck.prm" "$work/err" || fail "--replace of a folder that is no run directory: $(cat "$work/err")"
+[ $? -eq 2 ] && grep -q "holds no demvv marker" "$work/err" || fail "--replace of a folder that is no run directory: $(cat "$work/err")"
 [ -f "$work/notes/keep.txt" ] || fail "--replace removed files of a folder that is no run directory"
 echo text > "$work/file"
 run "$impact" --out "$work/file" 2>"$work/err"
@@ -63,12 +64,14 @@ run "$impact" --out "$work/r" --replace --set particles/file=missing.csv 2>"$wor
 [ $? -eq 2 ] && grep -q "missing.csv" "$work/err" || fail "a bad deck with --replace: $(cat "$work/err")"
 [ -f "$work/r/stray.txt" ] && cmp -s "$work/r/summary.json" "$work/summary_before" || fail "a bad deck's --replace touched the old run"
 
-# --replace replaces the run whole: old ParaView frames and stray files go.
+# --replace replaces the run whole: old ParaView frames go, a file no run
+# writes (the user's) stays.
 run "$impact" --out "$work/pv" --set output/paraview=true 2>/dev/null || fail "the ParaView run failed"
 [ -d "$work/pv/paraview" ] || fail "the ParaView run wrote no paraview/"
 echo keep > "$work/pv/stray.txt"
 run "$impact" --out "$work/pv" --replace 2>/dev/null || fail "the run with --replace failed"
-[ ! -e "$work/pv/paraview" ] && [ ! -e "$work/pv/stray.txt" ] || fail "--replace left old files: $(ls "$work/pv")"
+[ ! -e "$work/pv/paraview" ] || fail "--replace left old files: $(ls "$work/pv")"
+[ -f "$work/pv/stray.txt" ] || fail "--replace removed a file no run writes"
 same_results "$work/pv/summary.json" "$work/r/summary.json" || fail "the replacing run's results differ"
 
 # A paused run resumes in its own directory, to the uninterrupted results.
@@ -133,6 +136,6 @@ if [ -n "$mpirun" ]; then
     fail "MPI: a check failed on rank 0 ended with $code: $(cat "$work/err")"
   [ -f "$work/mpi/stray.txt" ] || fail "MPI: a failed --replace removed the old files"
   cylinder --replace >/dev/null 2>&1 || fail "MPI: the run with --replace failed"
-  [ ! -e "$work/mpi/stray.txt" ] && grep -q '"completed"' "$work/mpi/summary.json" || fail "MPI: --replace did not replace"
+  [ -f "$work/mpi/stray.txt" ] && grep -q '"completed"' "$work/mpi/summary.json" || fail "MPI: --replace did not replace"
 fi
 echo "run directories: ok"

@@ -11,6 +11,7 @@ cylinder frames have one cell per mesh cell of their level.
 usage: run_outputs.py DEMVV CASES_DIR WORK_DIR
 """
 import csv
+import fnmatch
 import glob
 import json
 import math
@@ -38,7 +39,26 @@ def run(name, deck, *sets):
     result = subprocess.run(args, stderr=subprocess.PIPE, text=True)
     if result.returncode != 0:
         fail(f"{name}: demvv exited with {result.returncode}: {result.stderr.strip()}")
+    check_owned(os.path.join(work, name))
     return os.path.join(work, name)
+
+
+def check_owned(run_dir):
+    """Every entry a run writes is one that --replace knows to remove (the
+    marker lists them, as demvv's own table does), so a replaced run leaves
+    nothing of its own behind and touches nothing else."""
+    try:
+        marker = read_json(os.path.join(run_dir, ".demvv"))
+    except (OSError, ValueError) as e:
+        fail(f"{run_dir}: no readable ownership marker .demvv: {e}")
+        return
+    if marker.get("made_by") != "demvv" or marker.get("holds") != "run":
+        fail(f"{run_dir}/.demvv: not a run's marker: {marker}")
+    for entry in os.listdir(run_dir):
+        if entry == ".demvv.lock":
+            continue
+        if not any(fnmatch.fnmatchcase(entry, p) for p in marker.get("outputs", [])):
+            fail(f"{run_dir}: the run wrote '{entry}', which --replace would not remove (add it to output_entries)")
 
 
 def reject_constant(text):
@@ -217,6 +237,11 @@ def check_files(run_dir):
         for name in files:
             path = os.path.join(root, name)
             ext = os.path.splitext(name)[1]
+            if name == ".demvv":
+                read_json(path)  # the ownership marker (check_owned reads what it says)
+                continue
+            if name == ".demvv.lock":
+                continue  # the lock file: a pid, or nothing
             if ext not in known:
                 fail(f"{path}: a file this test does not know how to check")
             elif ext == ".json":

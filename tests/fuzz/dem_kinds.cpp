@@ -13,12 +13,12 @@ const std::vector<DeckKind> &deck_kinds()
 {
   static const std::vector<DeckKind> kinds = {
     {"scene", "explicit particles, walls, bonds and prescribed motions", &declare_scene,
-     [](const Deck &d) { parse_scene(d); }, [](const Deck &d, const RunOptions &o) { return run_scene(d, o).status; }},
+     [](const Deck &d) { parse_scene(d); }, [](const Deck &d, const RunOptions &o) { return run_scene(d, o).status; }, false, true},
     {"prepare", "numerical sample preparation", &declare_prepare, [](const Deck &d) { parse_prepare(d); },
      [](const Deck &d, const RunOptions &o) { return run_prepare(d, o).status; }},
     {"uniaxial", "constant-strain-rate compression of a bonded cylinder between platens", &declare_uniaxial,
      [](const Deck &d) { parse_uniaxial(d); },
-     [](const Deck &d, const RunOptions &o) { return run_uniaxial(d, o).status; }},
+     [](const Deck &d, const RunOptions &o) { return run_uniaxial(d, o).status; }, false, true},
   };
   return kinds;
 }

@@ -10,13 +10,13 @@
 #
 # usage: fuzz.sh FUZZ_BUILD_DIR SOURCE_DIR SECONDS [TARGET...]
 #   FUZZ_BUILD_DIR  the build folder's tests/fuzz (it holds fuzz_deck, ...)
-#   TARGET          deck, overrides, particles, sample (default: all four)
+#   TARGET          deck, overrides, particles, sample, plot (default: all five)
 set -u
 bin=$1
 src=$2
 seconds=$3
 shift 3
-targets=${*:-deck overrides particles sample}
+targets=${*:-deck overrides particles sample plot}
 here=$src/tests/fuzz
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -31,6 +31,7 @@ seeds() { # TARGET DIR
     overrides) set -- "$2" "$here"/seeds/overrides/* ;;
     particles) set -- "$2" "$src"/cases/*/*.csv "$src"/tests/data/*.csv "$src"/tests/data/bad/*.csv ;;
     sample) set -- "$2" "$src"/tests/data/*.json "$src"/tests/data/bad/sample_*.json ;;
+    plot) set -- "$2" "$here"/seeds/plot/* ;;
   esac
   dir=$1
   shift

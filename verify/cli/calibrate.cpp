@@ -560,7 +560,9 @@ void Calibration::write_outputs(const std::string &status, const Evaluation *fin
 
 int Calibration::run()
 {
+  std::unique_ptr<DirectoryLock> lock; // rank 0's, for the whole calibration
   on_rank_zero_for_all(true, [&] {
+    lock = std::make_unique<DirectoryLock>(o_.settings.out_dir, "calibration");
     const std::string record = o_.settings.out_dir + "/calibration.json";
     if (!claim_resumable_directory(o_.settings.out_dir, o_.settings.replace, "calibration", "calibration.json"))
       return;

@@ -16,6 +16,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 namespace verify
 {
@@ -34,7 +35,7 @@ void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
   if (!status.interrupted_by && !status.paused)
   {
     std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
-              << o.out_dir << "\n";
+              << o.out_dir << (status.verdict.empty() ? "" : "; " + status.verdict) << "\n";
     return;
   }
   const std::string stopped =
@@ -125,11 +126,22 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   if (o.out_dir.empty())
     o.out_dir = "runs/" + deck.name();
   const DeckKind *kind = find_deck_kind(deck.kind());
+  if (!kind->pauses && (o.pause_after > 0 || o.resume))
+    throw DeckError(std::string(o.resume ? "--resume" : "--pause-after " + std::to_string(o.pause_after)) +
+                    ": a " + deck.kind() + " run has no checkpoint to pause at or resume from: expected it only "
+                    "for scene and uniaxial decks (or a run without it)");
+  std::unique_ptr<DirectoryLock> lock; // held until the run, its figures and its summary are done
+  on_rank_zero_for_all(kind->on_every_mpi_rank, [&] {
+    lock = std::make_unique<DirectoryLock>(o.out_dir, "run");
+    if (!o.resume)
+      claim_run_directory(o.out_dir, o.replace, [&] { kind->parse(deck); }, deck.input_files());
+    else if (!marked_as(o.out_dir, "run"))
+      throw DeckError("--resume '" + o.out_dir + "': holds no demvv marker (" + ownership_marker +
+                      "), so it is no run directory demvv made: expected the directory of a paused or interrupted "
+                      "run");
+  });
   if (o.resume)
     check_resumable(o.out_dir, deck);
-  else
-    on_rank_zero_for_all(kind->on_every_mpi_rank,
-                         [&] { claim_run_directory(o.out_dir, o.replace, [&] { kind->parse(deck); }); });
   RunStatus status;
   try
   {
@@ -191,10 +203,7 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
 int command_catalogue(const std::string &out_file)
 {
   const std::string text = verification_catalogue();
-  if (out_file.empty())
-    std::cout << text;
-  else
-    write_atomically(out_file, text);
+  write_named_output(out_file.empty() ? "-" : out_file, text);
   return 0;
 }
 } // namespace verify

@@ -28,6 +28,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <iostream>
 #include <new>
 #include <stdexcept>
@@ -46,6 +47,12 @@ int refuse(const std::string &why, int code)
 
 int main(int argc, char **argv)
 {
+  // A file-size limit (ulimit -f) or a closed pipe makes write(2) fail with
+  // EFBIG or EPIPE instead of killing the process mid-row: the output
+  // error path (exit 4, rows before it whole, summary marked) handles it.
+  std::signal(SIGXFSZ, SIG_IGN);
+  std::signal(SIGPIPE, SIG_IGN);
+
   CLI::App app{"demvv: DEM verification workbench (SI units, compression positive)"};
   app.require_subcommand(1);
 
@@ -205,7 +212,7 @@ int main(int argc, char **argv)
   std::string catalogue_out;
   auto *catalogue_cmd =
     app.add_subcommand("catalogue", "Write the verification catalogue (Markdown) generated from the check registry");
-  catalogue_cmd->add_option("--out", catalogue_out, "File to write (default: standard output)");
+  catalogue_cmd->add_option("--out", catalogue_out, "File to write (default or -: standard output; a device such as /dev/null is written through)");
 
   try
   {

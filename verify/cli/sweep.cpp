@@ -24,6 +24,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -645,7 +646,11 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
     throw DeckError("sweep of " + plan.base_deck + ": no --out: expected the sweep directory");
 
   std::vector<Member> members = plan_members(plan);
-  on_rank_zero_for_all(true, [&] { claim_sweep_directory(o.out_dir, o.replace, members); });
+  std::unique_ptr<DirectoryLock> lock; // rank 0's, for the whole sweep
+  on_rank_zero_for_all(true, [&] {
+    lock = std::make_unique<DirectoryLock>(o.out_dir, "sweep");
+    claim_sweep_directory(o.out_dir, o.replace, members);
+  });
   const RunOptions member_options = member_threads(o.threads, mpi.ranks);
   const int threads = member_options.threads;
   prepare_samples(members, int(mpi.rank), int(mpi.ranks), o.progress);

@@ -22,6 +22,19 @@ namespace Patterns = dealii::Patterns;
 
 namespace
 {
+/// The position of the first control character (below 0x20, or DEL) in
+/// `text`, npos when it has none.
+std::size_t control_character(const std::string &text)
+{
+  for (std::size_t k = 0; k < text.size(); ++k)
+    if (static_cast<unsigned char>(text[k]) < 0x20 || text[k] == 0x7f)
+      return k;
+  return std::string::npos;
+}
+} // namespace
+
+namespace
+{
 std::vector<std::string> split(const std::string &s, char sep)
 {
   std::vector<std::string> out;
@@ -265,6 +278,23 @@ struct Deck::Impl final : DeckSchema
     return false;
   }
 
+  /// The name of a repeated section ("plane NAME") becomes a column name
+  /// of series.csv and a word of figure titles: letters, digits, '_', '-'
+  /// and '.' only.
+  void check_instance_names(const std::string &key, const Origin &o) const
+  {
+    static const std::string allowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.";
+    for (const std::string &section : split(key, '/'))
+      for (const Repeated &r : repeats)
+        if (section.size() > r.keyword.size() + 1 && section.rfind(r.keyword + " ", 0) == 0)
+        {
+          const std::string name = section.substr(r.keyword.size() + 1);
+          if (name.find_first_not_of(allowed) != std::string::npos)
+            reject(o, "section '" + escaped(section) + "': the name '" + escaped(name) +
+                        "' becomes a column of series.csv: expected letters, digits, '_', '-' or '.'");
+        }
+  }
+
   // --- assignment --------------------------------------------------------
   [[noreturn]] void reject(const Origin &o, const std::string &message) const
   {
@@ -289,6 +319,11 @@ struct Deck::Impl final : DeckSchema
 
   void assign(const std::string &key, const std::string &raw, const Origin &o)
   {
+    for (const std::string &part : split(key, '/'))
+      if (const std::size_t bad = control_character(part); bad != std::string::npos)
+        reject(o, "key or section '" + escaped(key) + "' holds a control character (" + escaped(part.substr(bad, 1)) +
+                    "): expected printable text (control characters would rewrite the run's own records)");
+    check_instance_names(key, o);
     if (entries.find(key) == entries.end())
       declare_instance(key);
     const auto it = entries.find(key);
@@ -301,6 +336,15 @@ struct Deck::Impl final : DeckSchema
       reject(o, "key '" + key + "' has value '" + escaped(value) +
                   "': not UTF-8 text: expected UTF-8 (save the deck as UTF-8; summaries and sample files are JSON, "
                   "which holds only UTF-8)");
+    if (const std::size_t bad = control_character(value); bad != std::string::npos)
+      reject(o, "key '" + key + "' has value '" + escaped(value) + "' with a control character (" +
+                  escaped(value.substr(bad, 1)) +
+                  "): expected one line of printable text (a newline or escape would be written into deck.prm, "
+                  "CSV headers and scripts)");
+    if (value.find('#') != std::string::npos)
+      reject(o, "key '" + key + "' has value '" + escaped(value) +
+                  "' with '#': expected text without '#' (it starts a comment in a .prm deck, so deck.prm would "
+                  "read back another value)");
     if (e.numeric)
       for (const std::string &item : split(value, ','))
         if (!item.empty() && !normal_double(item))
@@ -630,6 +674,17 @@ std::string Deck::resolved() const
   for (const auto &[key, value] : relative)
     impl_->store(key, value);
   return out.str();
+}
+
+std::vector<std::string> Deck::input_files() const
+{
+  std::vector<std::string> files;
+  if (!impl_->path.empty())
+    files.push_back(absolute_file(impl_->path));
+  for (const auto &[key, e] : impl_->entries)
+    if (e.file && !e.value.empty())
+      files.push_back(absolute_file(file(key)));
+  return files;
 }
 
 std::string Deck::documented() const

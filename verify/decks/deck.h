@@ -88,6 +88,7 @@ struct DeckKind
   void (*parse)(const Deck &);
   RunStatus (*run)(const Deck &, const RunOptions &);
   bool on_every_mpi_rank = false;
+  bool pauses = false; ///< --pause-after and --resume work (a DEM time loop with checkpoints)
 };
 
 /// THE table of deck kinds (verify/kinds/deck_kinds.cpp).
@@ -155,6 +156,9 @@ public:
   std::vector<double> real_list(const std::string &key) const;
   /// A relative file name from the deck resolved against directory().
   std::string file(const std::string &key) const;
+  /// The deck file and every file its entries name, absolute (links and
+  /// ".." resolved where the file exists).
+  std::vector<std::string> input_files() const;
   /// The instances of a repeated section, e.g. instances("walls", "plane")
   /// gives {"plane 1", "plane top"}, in the order the deck first names them.
   std::vector<std::string> instances(const std::string &section, const std::string &keyword) const;

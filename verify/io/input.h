@@ -13,6 +13,7 @@
 // exhaust a workstation's memory while parsed (a JSON tree takes a few times
 // its text):
 //   decks              1 MiB   (a deck is a few hundred lines of text)
+//   run summaries     64 MiB   (summary.json read back by demvv plot)
 //   tables and samples 2 GiB   (a CSV of balls or a sample file; the thesis's
 //                               largest sample of 12000 balls is about 20 MB)
 // Runs whose estimated memory (dem::estimated_memory_bytes) exceeds what
@@ -28,6 +29,8 @@ namespace verify
 {
 constexpr std::uintmax_t max_deck_bytes = std::uintmax_t{1} << 20;
 constexpr std::uintmax_t max_table_bytes = std::uintmax_t{2} << 30;
+/// A run's summary.json (a few kB; a study's with every level, a few hundred kB).
+constexpr std::uintmax_t max_summary_bytes = std::uintmax_t{64} << 20;
 constexpr int max_json_depth = 64;
 
 /// The whole text of the regular file `path`; `what` names it in errors

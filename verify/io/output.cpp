@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <omp.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -57,12 +58,43 @@ int write_all(int fd, const char *data, std::size_t size)
 }
 } // namespace
 
+namespace
+{
+/// What stands at `path` now, links not followed: 0 when nothing does.
+mode_t kind_at(const std::string &path)
+{
+  struct stat st{};
+  return ::lstat(path.c_str(), &st) == 0 ? st.st_mode & S_IFMT : 0;
+}
+
+/// A temporary file beside `path`, created exclusively (mkstemp: O_EXCL,
+/// so never through a link or over another file); its name in `tmp`.
+int temporary_beside(const std::string &path, std::string &tmp)
+{
+  std::string name = path + ".XXXXXX.tmp";
+  const int fd = ::mkstemps(name.data(), 4);
+  if (fd >= 0)
+  {
+    ::fchmod(fd, 0644);
+    tmp = name;
+  }
+  return fd;
+}
+} // namespace
+
 void write_atomically(const std::string &path, const std::string &content)
 {
-  const std::string tmp = path + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const mode_t kind = kind_at(path);
+  if (kind == S_IFLNK)
+    throw OutputError(path + ": is a symbolic link: demvv replaces only regular files it can see (a link could "
+                             "point anywhere): expected a regular file or a new name");
+  if (kind != 0 && kind != S_IFREG)
+    throw OutputError(path + ": is not a regular file (a directory, device, pipe or socket): expected a regular "
+                             "file or a new name");
+  std::string tmp;
+  const int fd = temporary_beside(path, tmp);
   if (fd < 0)
-    output_failed(tmp, "cannot write", errno);
+    output_failed(path + ".XXXXXX.tmp", "cannot write", errno);
   int error = write_all(fd, content.data(), content.size());
   if (!error && fsync(fd) != 0)
     error = errno;
@@ -71,9 +103,35 @@ void write_atomically(const std::string &path, const std::string &content)
     error = errno;
   if (error)
   {
-    std::remove(tmp.c_str());
+    ::unlink(tmp.c_str());
     output_failed(path, "cannot write", error);
   }
+}
+
+void write_named_output(const std::string &path, const std::string &content)
+{
+  if (path == "-")
+  {
+    std::fwrite(content.data(), 1, content.size(), stdout);
+    if (std::fflush(stdout) != 0)
+      output_failed("standard output", "cannot write", errno);
+    return;
+  }
+  const mode_t kind = kind_at(path);
+  if (kind == S_IFCHR || kind == S_IFIFO)
+  {
+    // A device or a pipe the user named (/dev/null, /dev/stdout, a FIFO):
+    // written through, never replaced.
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0)
+      output_failed(path, "cannot write", errno);
+    const int error = write_all(fd, content.data(), content.size());
+    ::close(fd);
+    if (error)
+      output_failed(path, "cannot write", error);
+    return;
+  }
+  write_atomically(path, content);
 }
 
 std::string read_file(const std::string &path)
@@ -195,7 +253,7 @@ void Progress::finish()
 
 std::string fnv1a_hex(const std::string &text)
 {
-  std::uint64_t h = 1469598103934665603ULL;
+  std::uint64_t h = 14695981039346656037ULL; // the standard 64-bit offset basis
   for (unsigned char c : text)
   {
     h ^= c;
@@ -206,8 +264,28 @@ std::string fnv1a_hex(const std::string &text)
   return out;
 }
 
+namespace
+{
+/// This machine's name and processor model (the first "model name" of
+/// /proc/cpuinfo): builds use -march=native, so the machine is part of how a
+/// result was made.
+std::pair<std::string, std::string> machine()
+{
+  char host[256] = {0};
+  if (gethostname(host, sizeof host - 1) != 0)
+    host[0] = 0;
+  std::string cpu;
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; cpu.empty() && std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      cpu = line.substr(line.find(':') + 2);
+  return {host, cpu};
+}
+} // namespace
+
 nlohmann::json provenance(int threads, long long seed, const std::string &deck_text)
 {
+  static const std::pair<std::string, std::string> where = machine();
   char when[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
@@ -219,6 +297,8 @@ nlohmann::json provenance(int threads, long long seed, const std::string &deck_t
                       {"seed", seed},
                       {"deck_fnv1a64", fnv1a_hex(deck_text)},
                       {"started_utc", when},
+                      {"host", where.first},
+                      {"cpu_model", where.second},
                       {"units", "SI (m, kg, s, N, Pa, J); compression positive"}};
   p.update(build_identity());
   return p;

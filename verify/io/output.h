@@ -30,8 +30,16 @@ public:
 };
 
 /// Writes `content` to `path` via a temporary file and rename(2); on failure
-/// the old file stays as it was and OutputError says why.
+/// the old file stays as it was and OutputError says why.  The temporary
+/// file is created exclusively beside `path` (never through a link, never
+/// over another file); a `path` that is a symbolic link or not a regular
+/// file (a directory, a device, a pipe) is refused, never replaced.
 void write_atomically(const std::string &path, const std::string &content);
+
+/// An output file the user named (--out FILE): "-" is standard output; a
+/// character device or a pipe (/dev/null, a FIFO) is written through, never
+/// replaced; anything else as write_atomically().
+void write_named_output(const std::string &path, const std::string &content);
 
 /// Creates a directory and its parents; throws DeckError-free std::runtime_error on failure.
 void make_directories(const std::string &path);
@@ -86,7 +94,8 @@ private:
 };
 
 /// Provenance of a run: version, git SHA, the sources' hash, compiler, flags
-/// and the instruction sets they resolved to, threads, seed, input.
+/// and the instruction sets they resolved to, host and processor model,
+/// threads, seed, input.
 nlohmann::json provenance(int threads, long long seed, const std::string &deck_text);
 
 /// What makes this build's results what they are: the hash of demvv's
@@ -98,7 +107,8 @@ nlohmann::json build_identity();
 /// Whether `record` (a provenance, or a build_identity()) names this build.
 bool made_by_this_build(const nlohmann::json &record);
 
-/// FNV-1a 64-bit hash of a text, as 16 hex digits (identifies inputs; not cryptographic).
+/// FNV-1a 64-bit hash of a text (the standard offset basis and prime, so any
+/// FNV-1a tool reproduces it), as 16 hex digits (identifies inputs; not cryptographic).
 std::string fnv1a_hex(const std::string &text);
 
 /// Reads a whole file; throws std::runtime_error if it cannot.

@@ -16,14 +16,14 @@ const std::vector<DeckKind> &deck_kinds()
   static const std::vector<DeckKind> kinds = {
     {"scene", "explicit particles, walls, bonds and prescribed motions (two-ball tests, chains, boxes)",
      &declare_scene, [](const Deck &d) { parse_scene(d); },
-     [](const Deck &d, const RunOptions &o) { return run_scene(d, o).status; }},
+     [](const Deck &d, const RunOptions &o) { return run_scene(d, o).status; }, false, true},
     {"prepare", "numerical sample preparation (thesis ch. 5): a dense random bonded packing saved to a sample file",
      &declare_prepare, [](const Deck &d) { parse_prepare(d); },
      [](const Deck &d, const RunOptions &o) { return run_prepare(d, o).status; }},
     {"uniaxial", "compression of a bonded cylinder between platens: constant rate, creep, relaxation or cyclic",
      &declare_uniaxial,
      [](const Deck &d) { parse_uniaxial(d); },
-     [](const Deck &d, const RunOptions &o) { return run_uniaxial(d, o).status; }},
+     [](const Deck &d, const RunOptions &o) { return run_uniaxial(d, o).status; }, false, true},
     {"burgers_ode", "one Burger's chain (contact or material point) under a prescribed history, SUNDIALS CVODE "
                     "beside its closed form",
      &declare_burgers_ode, [](const Deck &d) { parse_burgers_ode(d); },

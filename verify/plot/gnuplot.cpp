@@ -55,13 +55,39 @@ Figure make_figure(std::string name, std::string title, std::string x_label, std
 
 namespace
 {
-/// A gnuplot single-quoted string ('' stands for one quote inside).
+/// Text from a run directory (a title, a column, a file name) made safe
+/// for one line of a script: control characters (a newline would start a
+/// command of its own) become spaces.
+std::string one_line(const std::string &s)
+{
+  std::string out = s;
+  for (char &c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = ' ';
+  return out;
+}
+
+/// A gnuplot single-quoted string ('' stands for one quote inside): inside
+/// single quotes gnuplot substitutes neither `backquoted` commands nor
+/// @macros, and control characters are gone (one_line).
 std::string quoted(const std::string &s)
 {
   std::string out = "'";
-  for (char c : s)
+  for (char c : one_line(s))
     out += c == '\'' ? std::string("''") : std::string(1, c);
   return out + "'";
+}
+
+/// Text for a comment line: gnuplot reads a comment's line too (a trailing
+/// backslash continues it, backquotes are substituted before the `#`), so
+/// only letters, digits and plain punctuation stay.
+std::string comment_text(const std::string &s)
+{
+  std::string out = one_line(s);
+  for (char &c : out)
+    if (c == '`' || c == '\\' || c == '@' || c == '$')
+      c = '_';
+  return out;
 }
 
 std::string number(double v)
@@ -125,6 +151,7 @@ std::string run_gnuplot(const std::string &dir, const std::string &name)
   const std::string svg = dir + "/" + name + ".svg", log = dir + "/" + name + ".log";
   const std::string script = name + ".gp", log_name = name + ".log";
   std::remove(svg.c_str());
+  std::remove(log.c_str()); // a link named so is removed, never followed (the child creates it exclusively)
   // Only async-signal-safe calls between fork and exec: the strings are made before.
   const pid_t pid = fork();
   if (pid < 0)
@@ -134,7 +161,7 @@ std::string run_gnuplot(const std::string &dir, const std::string &name)
     if (chdir(dir.c_str()) != 0)
       _exit(126);
     const int in = open("/dev/null", O_RDONLY);
-    const int out = open(log_name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = open(log_name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
     if (in < 0 || out < 0)
       _exit(126);
     dup2(in, 0);
@@ -163,7 +190,7 @@ std::string run_gnuplot(const std::string &dir, const std::string &name)
 std::string gnuplot_script(const Figure &f)
 {
   std::ostringstream o;
-  o << "# demvv figure '" << f.name << "': " << f.title << "\n"
+  o << "# demvv figure " << f.name << ": " << comment_text(f.title) << "\n"
     << "# Redraw with `gnuplot " << f.name << ".gp` in this folder (writes " << f.name << ".svg).\n"
     << "reset\n"
     << "set terminal svg size 760,460 noenhanced font 'Sans,12' background rgb 'white'\n"
@@ -226,7 +253,7 @@ void write_figure_files(const Figure &f, const std::string &dir)
   {
     if (!in_memory(c) || c.x.empty())
       continue;
-    data << (any ? "\n\n" : "") << "# " << c.title << "\n";
+    data << (any ? "\n\n" : "") << "# " << one_line(c.title) << "\n";
     any = true;
     for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k)
       data << number(c.x[k]) << "," << number(c.y[k])
@@ -257,13 +284,29 @@ bool gnuplot_available()
   return false;
 }
 
+std::string figure_name(const std::string &text)
+{
+  static const std::string allowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
+  std::string name = text.substr(0, 100);
+  for (char &c : name)
+    if (allowed.find(c) == std::string::npos)
+      c = '_';
+  return name.empty() ? "figure" : name;
+}
+
 std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const std::string &dir)
 {
+  struct stat st{};
+  if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+    throw OutputError(dir + ": is not a directory (a symbolic link or a file): demvv draws figures only into a "
+                            "directory of its own: expected a plots directory or none (remove it)");
   make_directories(dir);
   const bool have_gnuplot = gnuplot_available();
   std::vector<DrawnFigure> out;
-  for (const Figure &f : figures)
+  for (const Figure &named : figures)
   {
+    Figure f = named; // its name from a fixed alphabet: it becomes file names and script text
+    f.name = figure_name(named.name);
     write_figure_files(f, dir);
     DrawnFigure d;
     d.name = f.name;

@@ -27,7 +27,16 @@ struct DrawnFigure
 std::string gnuplot_script(const Figure &figure);
 /// Writes NAME.gp and, when a curve holds points, NAME.csv into `dir`.
 void write_figure_files(const Figure &figure, const std::string &dir);
-/// Writes the files of each figure and runs gnuplot on them, one process a figure.
+/// `text` as a figure's name: letters, digits, '_' and '-' (anything else
+/// becomes '_'), at most 100 characters; the name is the stem of the
+/// figure's files and appears in its script, so a name made from a run
+/// directory's contents (a summary key) can neither leave the folder nor
+/// inject a script line.
+std::string figure_name(const std::string &text);
+/// Writes the files of each figure and runs gnuplot on them, one process a
+/// figure, into `dir` (made when absent; refused when it is a symbolic link
+/// or no directory).  Every name goes through figure_name(); every text
+/// written into a script is one line, single-quoted (no substitution).
 std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const std::string &dir);
 /// "NAME: PROBLEM; ..." of the figures that were not drawn ("" when all were).
 std::string undrawn(const std::vector<DrawnFigure> &figures);

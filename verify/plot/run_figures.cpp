@@ -2,6 +2,7 @@
 
 #include "verify/decks/csv_input.h"
 #include "verify/decks/deck.h"
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 #include "verify/plot/studies.h"
 
@@ -272,7 +273,7 @@ void gci_figures(const std::string &dir, const nlohmann::json &summary, std::vec
       quantity.resize(quantity.size() - 3);
     for (char &c : quantity)
       c = c == '_' ? ' ' : c;
-    out.push_back(gci_figure("gci_" + it.key(), quantity, l, 1e3, 1e-6, "cell size [mm]", quantity + " [MPa]"));
+    out.push_back(gci_figure(figure_name("gci_" + it.key()), quantity, l, 1e3, 1e-6, "cell size [mm]", quantity + " [MPa]"));
   }
 }
 
@@ -346,7 +347,7 @@ std::vector<Figure> run_figures(const std::string &run_dir)
   nlohmann::json summary;
   try
   {
-    summary = nlohmann::json::parse(read_file(path));
+    summary = parse_json_input(read_input(path, "run summary", max_summary_bytes), path, "run summary");
     const std::string kind = summary.at("kind").get<std::string>();
     std::vector<Figure> out;
     if (kind == "uniaxial")

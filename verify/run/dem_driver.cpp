@@ -23,10 +23,11 @@ namespace verify
 namespace
 {
 // SIGINT and SIGTERM only raise this flag; the loop looks at it after every
-// step, so a run always stops between two whole steps.
+// step, so a run always stops between two whole steps.  SIGHUP (a closed
+// terminal or ssh connection) is taken as SIGTERM.
 volatile std::sig_atomic_t stop_signal = 0;
 
-extern "C" void request_stop(int signal) { stop_signal = signal; }
+extern "C" void request_stop(int signal) { stop_signal = signal == SIGHUP ? SIGTERM : signal; }
 
 /// Installs the stop handlers for the lifetime of a run and restores the
 /// previous ones afterwards (checks and tests run many DEM runs in one
@@ -39,11 +40,13 @@ public:
     stop_signal = 0;
     previous_int_ = std::signal(SIGINT, request_stop);
     previous_term_ = std::signal(SIGTERM, request_stop);
+    previous_hup_ = std::signal(SIGHUP, request_stop);
   }
   ~StopSignals()
   {
     std::signal(SIGINT, previous_int_);
     std::signal(SIGTERM, previous_term_);
+    std::signal(SIGHUP, previous_hup_);
   }
   StopSignals(const StopSignals &) = delete;
   StopSignals &operator=(const StopSignals &) = delete;
@@ -52,6 +55,7 @@ public:
 private:
   void (*previous_int_)(int);
   void (*previous_term_)(int);
+  void (*previous_hup_)(int);
 };
 
 /// JSON has no NaN or infinity: such values are written as strings, so a

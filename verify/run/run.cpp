@@ -1,14 +1,21 @@
 #include "verify/run/run.h"
 
+#include "verify/io/input.h"
 #include "verify/io/output.h"
 #include "verify/io/paraview.h"
 
+#include <fcntl.h>
 #include <omp.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -46,6 +53,108 @@ int RunStatus::exit_code() const
   return interrupted_by ? 128 + interrupted_by : 0;
 }
 
+const std::vector<std::string> &output_entries(const std::string &what)
+{
+  static const std::vector<std::string> run = {
+    ownership_marker, "deck.prm", "summary.json", "series.csv", "particles.csv", "contacts.csv",
+    "bond_breaks.csv", "compare.csv", "convergence.csv", "convergence.txt", "gauge_study.csv", "mesh.csv",
+    "sample.json", "checkpoint", "plots", "paraview", "level_*", "calibration", "dem", "dem_half_time_step", "*.tmp"};
+  static const std::vector<std::string> sweep = {ownership_marker,    "sweep.json", "sweep.csv", "stats.csv",
+                                                 "members",           "plots",      "time_step_study.csv",
+                                                 "time_step_study.json", "*.tmp"};
+  static const std::vector<std::string> calibration = {ownership_marker, "calibration.json", "evaluations.csv",
+                                                       "fitted.prm", "evaluations", "plots", "*.tmp"};
+  if (what == "run")
+    return run;
+  if (what == "sweep")
+    return sweep;
+  if (what == "calibration")
+    return calibration;
+  throw std::logic_error("demvv bug: no output entries for '" + what + "'");
+}
+
+bool matches_entry(const std::string &name, const std::vector<std::string> &patterns)
+{
+  for (const std::string &p : patterns)
+  {
+    if (p == name)
+      return true;
+    const std::size_t n = p.size() - 1;
+    if (p.size() > 1 && p.back() == '*' && name.size() > n && name.compare(0, n, p, 0, n) == 0)
+      return true;
+    if (p.size() > 1 && p.front() == '*' && name.size() > n && name.compare(name.size() - n, n, p, 1, n) == 0)
+      return true;
+  }
+  return false;
+}
+
+void mark_directory(const std::string &dir, const std::string &what)
+{
+  write_atomically(dir + "/" + ownership_marker,
+                   json_text({{"made_by", "demvv"},
+                              {"holds", what},
+                              {"outputs", output_entries(what)},
+                              {"note", "demvv resumes, replaces or empties only directories holding this file, and "
+                                       "removes only entries named in outputs"}},
+                             2) +
+                     "\n");
+}
+
+bool marked_as(const std::string &dir, const std::string &what)
+{
+  const std::string path = dir + "/" + ownership_marker;
+  struct stat st{};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    return false;
+  try
+  {
+    const nlohmann::json doc = parse_json_input(read_input(path, "demvv marker", 1 << 16), path, "demvv marker");
+    return doc.is_object() && doc.value("made_by", "") == "demvv" && doc.value("holds", "") == what;
+  }
+  catch (const std::exception &)
+  {
+    return false;
+  }
+}
+
+DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
+{
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(dir, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+    throw DeckError(what + " directory '" + dir + "' exists and is not a directory: expected a directory for the " +
+                    what + "'s files (--out)");
+  make_directories(dir);
+  const std::string path = dir + "/" + lock_file;
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw DeckError(what + " directory '" + dir + "': cannot open its lock file " + lock_file + " (" +
+                    std::strerror(errno) + "): expected a directory demvv may write, holding no link of that name");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+  {
+    char holder[32] = {0};
+    const ssize_t n = ::pread(fd_, holder, sizeof holder - 1, 0);
+    ::close(fd_);
+    fd_ = -1;
+    std::string pid = n > 0 ? std::string(holder, std::size_t(n)) : std::string();
+    pid.erase(pid.find_last_not_of(" \n") + 1);
+    throw DeckError(what + " directory '" + dir + "' is in use by another demvv process" +
+                    (pid.empty() ? std::string() : " (pid " + pid + ")") +
+                    ": expected it to finish first, or another --out");
+  }
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) < 0)
+  {
+    // The pid is a courtesy for the message above; the lock holds without it.
+  }
+}
+
+DirectoryLock::~DirectoryLock()
+{
+  if (fd_ >= 0)
+    ::close(fd_); // releases the lock; the file stays (removing it would race a waiting process)
+}
+
 bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding)
 {
   namespace fs = std::filesystem;
@@ -58,51 +167,68 @@ bool holds_entries(const std::string &dir, const std::string &named, const std::
   fs::directory_iterator entries(dir, ec);
   if (ec)
     throw DeckError(named + " cannot be read (" + ec.message() + "): expected a directory demvv may write (--out)");
-  return entries != fs::directory_iterator();
+  for (const fs::directory_entry &entry : entries)
+    if (entry.path().filename() != lock_file)
+      return true;
+  return false;
 }
 
-void empty_directory(const std::string &dir, const std::string &what)
+void remove_outputs(const std::string &dir, const std::string &what, const std::vector<std::string> &keep)
 {
   namespace fs = std::filesystem;
-  std::error_code ec;
+  const std::vector<std::string> &names = output_entries(what);
   std::vector<fs::path> old;
+  std::error_code ec;
   for (const fs::directory_entry &entry : fs::directory_iterator(dir))
-    old.push_back(entry.path());
+  {
+    const fs::path canonical = fs::weakly_canonical(fs::absolute(entry.path(), ec), ec);
+    const bool input = std::find(keep.begin(), keep.end(), canonical.string()) != keep.end();
+    if (!input && matches_entry(entry.path().filename().string(), names) &&
+        entry.path().filename() != ownership_marker)
+      old.push_back(entry.path());
+  }
+  // remove_all does not follow links: a link among the entries goes, its target stays.
   for (const fs::path &entry : old)
     if (fs::remove_all(entry, ec) == static_cast<std::uintmax_t>(-1) || ec)
-      throw OutputError(entry.string() + ": cannot be removed to replace " + what + " in " + dir + " (" +
+      throw OutputError(entry.string() + ": cannot be removed to replace the " + what + " in " + dir + " (" +
                         ec.message() + ")");
 }
 
 bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what,
-                               const std::string &marker)
+                               const std::string &record)
 {
   const std::string named = what + " directory '" + dir + "'";
   if (!holds_entries(dir, named, "the " + what))
+  {
+    mark_directory(dir, what);
     return false;
-  if (!std::filesystem::exists(std::filesystem::path(dir) / marker))
-    throw DeckError(named + " is not empty and holds no " + marker + ": expected a new or empty directory (--out), "
-                    "or a " + what + "'s own to resume or replace");
+  }
+  if (!marked_as(dir, what) || !std::filesystem::exists(std::filesystem::path(dir) / record))
+    throw DeckError(named + " is not empty and is no " + what + " directory demvv made (it lacks demvv's marker " +
+                    ownership_marker + " or " + record + "): expected a new or empty directory (--out), or a " +
+                    what + "'s own to resume or replace");
   if (!replace)
     return true;
-  empty_directory(dir, "the " + what);
+  remove_outputs(dir, what);
+  mark_directory(dir, what);
   return false;
 }
 
-void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate)
+void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate,
+                         const std::vector<std::string> &inputs)
 {
-  namespace fs = std::filesystem;
   const std::string named = "run directory '" + dir + "'";
   if (!holds_entries(dir, named, "the run's files"))
     return;
   if (!replace)
     throw DeckError(named + " is not empty: expected a new or empty directory (--out), or --replace to replace "
                             "the run there whole");
-  if (!fs::exists(fs::path(dir) / "deck.prm"))
-    throw DeckError(named + " is not empty and holds no deck.prm, so it is no run directory: --replace replaces "
-                            "only a run directory: expected a run directory or a new or empty one (--out)");
+  if (!marked_as(dir, "run"))
+    throw DeckError(named + " is not empty and holds no demvv marker (" + std::string(ownership_marker) +
+                    "), so it is no run directory demvv made: --replace replaces only those: expected a run "
+                    "directory or a new or empty one (--out)");
   validate();
-  empty_directory(dir, "the run");
+  remove_outputs(dir, "run", inputs);
 }
 
 void record_fault(RunStatus &status, const dem::NumericalFault &fault)
@@ -126,6 +252,7 @@ RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int t
   : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_(deck)
 {
   make_directories(dir);
+  mark_directory(dir, "run");
   const std::string &resolved = deck.resolved;
   provenance_ = provenance(threads, seed, resolved);
   provenance_["deck_file"] = deck.path;

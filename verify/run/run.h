@@ -23,6 +23,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace verify
 {
@@ -63,6 +64,8 @@ struct RunStatus
   double time = 0;         ///< s
   dem::Index particle = -1;
   std::string message;
+  /// A comparison's verdict, said on the run's last line ("" for other kinds).
+  std::string verdict;
   double wall_seconds = 0;
   long steps = 0;
   /// False on the MPI ranks that leave the run directory to rank 0.
@@ -124,30 +127,78 @@ private:
   std::unique_ptr<ParaviewWriter> paraview_;
 };
 
+// Ownership.  A directory demvv made holds the marker file `.demvv` (JSON:
+// what it holds, "run", "sweep" or "calibration", and the names of the
+// entries such a directory's runs write); only a directory with the marker
+// is ever resumed, emptied or replaced, and then only the entries of those
+// names are removed: a user's own files beside them stay.  A process that
+// works in a directory (a run, a resume, a sweep, a calibration) holds an
+// exclusive lock on it (flock(2) on `.demvv.lock`) for its whole life; a
+// second one is refused with the one-line error (exit 2), so two writers
+// never mix their rows.
+
+/// The marker's name, and the lock file's.
+constexpr const char *ownership_marker = ".demvv";
+constexpr const char *lock_file = ".demvv.lock";
+
+/// The entries a directory holding `what` ("run", "sweep", "calibration")
+/// may have demvv write: exact names, or a prefix followed by '*', or '*'
+/// followed by a suffix.
+const std::vector<std::string> &output_entries(const std::string &what);
+/// Whether `name` is one of `patterns`.
+bool matches_entry(const std::string &name, const std::vector<std::string> &patterns);
+
+/// Writes the marker that proves demvv made `dir`, holding `what`.
+void mark_directory(const std::string &dir, const std::string &what);
+/// Whether `dir` holds demvv's marker for `what` (a regular file, read within limits).
+bool marked_as(const std::string &dir, const std::string &what);
+
+/// An exclusive lock on a directory for as long as the object lives (made
+/// when absent).  DeckError naming the directory and the process that
+/// holds it when another process does.
+class DirectoryLock
+{
+public:
+  DirectoryLock(const std::string &dir, const std::string &what);
+  ~DirectoryLock();
+  DirectoryLock(const DirectoryLock &) = delete;
+  DirectoryLock &operator=(const DirectoryLock &) = delete;
+
+private:
+  int fd_ = -1;
+};
+
 /// Makes `dir` ready for a new run, before anything is written into it: a
 /// directory that does not exist yet or is empty is taken as it is; a
 /// non-empty one is refused (DeckError naming the directory and --replace),
 /// so that a run's files never mix with an earlier run's (old ParaView
 /// frames, gauge studies, level folders).  With `replace`, a run directory
-/// (one that holds deck.prm) has its contents removed, after `validate`
-/// (the deck's parse) has passed, so a bad deck loses nothing; a non-empty
-/// directory without deck.prm is never emptied.  A path that is no
-/// directory is refused.  OutputError when an entry cannot be removed.
-void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate);
-/// True when `dir` exists and holds entries, false when it is absent or
-/// empty; DeckError when it is no directory or cannot be read.  `named`
-/// names it in errors ("run directory 'x'"), `holding` says what it is for.
+/// (one that holds demvv's marker for a run) has the entries a run writes
+/// removed, after `validate` (the deck's parse, every input file read and
+/// checked) has passed, so a bad deck loses nothing; a non-empty directory
+/// without the marker is never emptied (a folder holding a copied deck.prm
+/// is no run directory).  A path that is no directory is refused.
+/// OutputError when an entry cannot be removed.
+/// `inputs` (absolute, as Deck::input_files) are never removed, whatever
+/// their names: a deck run in its own folder keeps itself and its CSVs.
+void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate,
+                         const std::vector<std::string> &inputs = {});
+/// True when `dir` exists and holds entries (the lock file aside), false
+/// when it is absent or empty; DeckError when it is no directory or cannot
+/// be read.  `named` names it in errors ("run directory 'x'"), `holding`
+/// says what it is for.
 bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding);
-/// Removes everything inside `dir`; OutputError naming the entry that
-/// would not go and `what` is being replaced ("the run").
-void empty_directory(const std::string &dir, const std::string &what);
+/// Removes the entries of `dir` that a directory holding `what` writes
+/// (output_entries), but none of `keep` (absolute paths); OutputError
+/// naming the entry that would not go.
+void remove_outputs(const std::string &dir, const std::string &what, const std::vector<std::string> &keep = {});
 /// Takes the output directory of a command that resumes (a sweep, a
-/// calibration: `what`), recognised by the file `marker` inside it: false
-/// when it is absent or empty, or when `replace` has emptied it; true when
-/// it holds an earlier one to resume.  DeckError when it holds something
-/// else (never emptied).
+/// calibration: `what`), recognised by demvv's marker for `what` and the
+/// file `record` inside it: false when it is absent or empty, or when
+/// `replace` has emptied it; true when it holds an earlier one to resume.
+/// DeckError when it holds something else (never emptied).
 bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what,
-                               const std::string &marker);
+                               const std::string &record);
 
 /// The command that continues a stopped run of `deck` in options.out_dir:
 /// the deck file, its --set values (a resume with others is refused), the

@@ -1,0 +1,158 @@
+#!/bin/sh
+# Run directories are untrusted input: a folder from a colleague, a CI
+# artefact or a tarball must never make demvv run code or touch a file
+# outside it, and demvv never mixes two writers in one directory.
+#   - demvv plot on a hostile summary.json (keys holding newlines, gnuplot
+#     commands, ../): no command runs, every file lands in RUN_DIR/plots
+#     under a name of a fixed alphabet; a plots/ that is a symbolic link and
+#     a link planted as a figure's log are refused or replaced, never
+#     followed;
+#   - an output file named by the user: a pipe is written through (never
+#     replaced by a regular file), a symbolic link is refused, `-` is
+#     standard output;
+#   - --replace empties only a directory holding demvv's marker, and there
+#     only the entries runs write (a user's notes stay); a working folder
+#     holding a copied deck.prm and its CSV loses nothing;
+#   - a second process on a directory in use (a run, a resume, a sweep) is
+#     refused with exit 2, and the first one finishes undisturbed;
+#   - text with control characters or '#' in a deck value, and a wall name
+#     that would break a CSV header, are refused with the one-line error;
+#   - a file-size limit ends a run with exit 4 (not SIGXFSZ), SIGHUP as
+#     SIGTERM does (exit 143, checkpoint).
+# Each of these failed before the ownership marker, the locks and the
+# sanitised script writer.
+# Usage: run_directory_security.sh DEMVV CASES_DIR
+set -u
+demvv=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+cases=$(cd "$2" && pwd)
+work=$(mktemp -d)
+trap 'kill $long 2>/dev/null; rm -rf "$work"' EXIT
+long=""
+fail() { echo "FAIL: $*"; exit 1; }
+impact=$cases/v01_linear_impact/case.prm
+run() { "$demvv" run "$@" --quiet --threads 1; }
+one_line() { [ "$(wc -l < "$1")" -eq 1 ] || fail "$2: the error is not one line: $(cat "$1")"; }
+# Starts a run of about 30 s in the background (its pid in $long) and waits
+# until it has begun writing its series.
+start_long_run() {
+  "$demvv" run "$impact" --out "$1" --set run/duration=2e-3 --quiet --threads 1 2>/dev/null &
+  long=$!
+  for _ in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+    [ -f "$1/series.csv" ] && break
+    sleep 0.2
+  done
+}
+
+# 1. A hostile summary.json: a key that would inject gnuplot lines (and
+# run a shell command through system()), a key that would leave the folder.
+mkdir -p "$work/hostile"
+python3 - "$work/hostile/summary.json" "$work/pwned" <<'EOF'
+import json, sys
+level = {"cell_sizes_m_fine_to_coarse": [1, 2, 4], "values_fine_to_coarse": [1, 2, 3],
+         "extrapolated": 0.5, "observed_order": 1, "gci_fine": 0.1}
+keys = ['x\nsystem("touch %s")\n' % sys.argv[2], "../../../escaped", "`touch %s`" % sys.argv[2]]
+json.dump({"kind": "cylinder", "gci": [{k: level for k in keys}]}, open(sys.argv[1], "w"))
+EOF
+"$demvv" plot "$work/hostile" 2>"$work/err" || fail "plot of the hostile folder failed: $(cat "$work/err")"
+[ ! -e "$work/pwned" ] || fail "plot ran a command named in summary.json"
+[ -z "$(find "$work" -name 'escaped*' ! -path "$work/hostile/plots/*")" ] || fail "plot wrote outside RUN_DIR/plots"
+for f in "$work/hostile/plots"/*; do
+  case "$(basename "$f")" in
+    *[!A-Za-z0-9_.-]*) fail "a figure file name outside the fixed alphabet: $f" ;;
+  esac
+done
+if command -v gnuplot >/dev/null 2>&1; then
+  for gp in "$work/hostile/plots"/*.gp; do (cd "$work/hostile/plots" && gnuplot "$gp" >/dev/null 2>&1); done
+  [ ! -e "$work/pwned" ] || fail "a figure's script, run by gnuplot, ran a command"
+fi
+
+# A plots/ that is a symbolic link is refused, its target untouched.
+mkdir -p "$work/linked" "$work/outside"
+cp "$work/hostile/summary.json" "$work/linked/"
+ln -s "$work/outside" "$work/linked/plots"
+"$demvv" plot "$work/linked" 2>"$work/err"
+[ $? -ne 0 ] && grep -q "is not a directory" "$work/err" || fail "a linked plots/ was not refused: $(cat "$work/err")"
+one_line "$work/err" "linked plots/"
+[ -z "$(ls "$work/outside")" ] || fail "plot wrote through a linked plots/: $(ls "$work/outside")"
+
+# A link planted where a figure's gnuplot log goes is removed, not followed.
+run "$impact" --out "$work/r" 2>/dev/null || fail "the impact run failed"
+echo precious > "$work/precious"
+ln -s "$work/precious" "$work/r/plots/energy.log"
+"$demvv" plot "$work/r" 2>/dev/null || fail "plot of a run with a planted link failed"
+[ "$(cat "$work/precious")" = precious ] || fail "plot wrote through a planted link"
+
+# 2. Outputs the user names: a pipe written through, a link refused, - is stdout.
+mkfifo "$work/pipe"
+cat "$work/pipe" > "$work/from_pipe" &
+reader=$!
+"$demvv" catalogue --out "$work/pipe" || fail "catalogue into a pipe failed"
+wait $reader
+[ -p "$work/pipe" ] || fail "catalogue replaced a pipe by a regular file"
+grep -q "verification catalogue" "$work/from_pipe" || fail "catalogue did not write through the pipe"
+echo precious > "$work/target.md"
+ln -s "$work/target.md" "$work/link.md"
+"$demvv" catalogue --out "$work/link.md" 2>"$work/err"
+[ $? -eq 4 ] && grep -q "symbolic link" "$work/err" || fail "catalogue onto a link: $(cat "$work/err")"
+[ -L "$work/link.md" ] && [ "$(cat "$work/target.md")" = precious ] || fail "catalogue replaced or followed a link"
+"$demvv" catalogue --out - | grep -q "verification catalogue" || fail "catalogue --out - did not write standard output"
+[ ! -e ./- ] || fail "catalogue --out - made a file named -"
+
+# 3. --replace: a working folder with a copied deck.prm and the CSV it names
+# is no run directory; a run directory keeps its user's files.
+mkdir "$work/mine"
+cp "$cases/v01_linear_impact/balls.csv" "$work/mine/"
+sed "s|set file = .*balls.csv|set file = balls.csv|" "$work/r/deck.prm" > "$work/mine/deck.prm"
+echo notes > "$work/mine/notes.txt"
+(cd "$work/mine" && "$demvv" run deck.prm --out . --replace --quiet --threads 1) 2>"$work/err"
+[ $? -eq 2 ] && grep -q "holds no demvv marker" "$work/err" || fail "--replace of a working folder: $(cat "$work/err")"
+one_line "$work/err" "--replace of a working folder"
+[ -f "$work/mine/deck.prm" ] && [ -f "$work/mine/balls.csv" ] && [ -f "$work/mine/notes.txt" ] ||
+  fail "--replace of a working folder removed files: $(ls "$work/mine")"
+echo notes > "$work/r/notes.txt"
+run "$impact" --out "$work/r" --replace 2>/dev/null || fail "--replace of a run directory failed"
+[ -f "$work/r/notes.txt" ] || fail "--replace removed a file no run writes"
+# A forged marker proves nothing about what to remove: only run outputs go.
+python3 -c 'import json,sys; json.dump({"made_by":"demvv","holds":"run","outputs":["*"]}, open(sys.argv[1],"w"))' "$work/mine/.demvv"
+(cd "$work/mine" && "$demvv" run deck.prm --out . --replace --quiet --threads 1) 2>"$work/err"
+[ -f "$work/mine/notes.txt" ] && [ -f "$work/mine/balls.csv" ] || fail "a forged marker's list was obeyed, or an input removed"
+
+# 4. One writer at a time: a second run, resume or sweep on a directory in
+# use is refused (exit 2) and the first finishes as if alone.
+start_long_run "$work/long"
+run "$impact" --out "$work/long" --replace 2>"$work/err"
+[ $? -eq 2 ] && grep -q "in use by another demvv process" "$work/err" || fail "a second --replace: $(cat "$work/err")"
+one_line "$work/err" "directory in use"
+run "$impact" --resume "$work/long" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "in use" "$work/err" || fail "a --resume of a run in progress: $(cat "$work/err")"
+"$demvv" sweep "$impact" --seeds 2 --out "$work/long" --quiet 2>"$work/err"
+[ $? -eq 2 ] && grep -q "in use" "$work/err" || fail "a sweep into a run in progress: $(cat "$work/err")"
+kill -TERM $long 2>/dev/null
+wait $long
+long=""
+grep -q '"interrupted"' "$work/long/summary.json" || fail "the first run's summary is not its own: $(head -c 300 "$work/long/summary.json")"
+
+# 5. Text that would rewrite the run's own records is refused.
+run "$impact" --out "$work/t1" --set "title=line one
+set kind = prepare" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "control character" "$work/err" || fail "a title with a newline: $(cat "$work/err")"
+one_line "$work/err" "a title with a newline"
+run "$impact" --out "$work/t2" --set "title=a # b" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "'#'" "$work/err" || fail "a title with '#': $(cat "$work/err")"
+printf 'set kind = scene\nsubsection walls\n  subsection plane a,b\n    set point = 0,0,0\n  end\nend\n' > "$work/comma.prm"
+run "$work/comma.prm" --out "$work/t3" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "a,b" "$work/err" && grep -q "series.csv" "$work/err" || fail "a wall named a,b: $(cat "$work/err")"
+# 6. Limits end a run through its own paths: a file-size limit (ulimit -f)
+# is an output error (exit 4, the summary says so), not SIGXFSZ; SIGHUP
+# stops a run as SIGTERM does (exit 143, checkpoint written).
+(ulimit -f 16; exec "$demvv" run "$impact" --out "$work/limited" --set run/duration=4e-4 --quiet --threads 1) 2>"$work/err"
+[ $? -eq 4 ] || fail "a file-size limit did not end in exit 4: $(cat "$work/err")"
+grep -q '"output failed"' "$work/limited/summary.json" || fail "the summary does not say the output failed"
+start_long_run "$work/hup"
+sleep 0.3
+kill -HUP $long
+wait $long
+code=$?
+long=""
+[ $code -eq 143 ] && [ -f "$work/hup/checkpoint/driver.json" ] || fail "SIGHUP ended the run with $code, expected 143 and a checkpoint"
+echo "run directory security: ok"
