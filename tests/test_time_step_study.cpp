@@ -1,12 +1,19 @@
 // The time-step study's statistics (verify/cli/time_step_study.h) on
 // synthetic ensembles whose answer is known: q_ij = q* + C s_i^p + e_j +
 // n_ij, with a seed effect e_j common to every level (the packing, which
-// common random numbers cancel) and level noise n_ij.
+// common random numbers cancel) and level noise n_ij; and the u_num a bulk
+// run takes from a recorded study (verify/run/numerical_uncertainty.h).
 #include "verify/cli/time_step_study.h"
+#include "verify/run/numerical_uncertainty.h"
+
+#include "test_folder.h"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 using Catch::Matchers::WithinAbs;
@@ -93,4 +100,48 @@ TEST_CASE("time-step study: a missing member drops out of the pairs that need it
   CHECK(a.level[1].n == seed_effect.size() - 1);
   CHECK(a.change[0].difference.n == seed_effect.size() - 1);
   CHECK(a.change[2].difference.n == seed_effect.size());
+}
+
+TEST_CASE("time-step study: a bulk run's u_num comes from the study that applies to it", "[verify][time_step]")
+{
+  const std::filesystem::path dir = demvv_tests::test_folder("studies");
+  std::filesystem::create_directories(dir);
+  // A study at 1000 balls: bounds 4 %, 3 %, 2 % at safeties 0.8, 0.4, 0.2.
+  nlohmann::json levels = nlohmann::json::array();
+  for (const auto &[safety, bound] : std::vector<std::pair<double, double>>{{0.8, 0.04}, {0.4, 0.03}, {0.2, 0.02}})
+    levels.push_back({{"safety", safety}, {"u_num_bound_relative", bound}});
+  const nlohmann::json study = {{"seeds", 5},
+                                {"provenance", {{"sources_sha256", "abc"}, {"started_utc", "2026-12-02T00:00:00Z"}}},
+                                {"quantities", {{"peak_stress_pa", {{"levels", levels}}}}}};
+  std::ofstream(dir / "results_1000.json") << study.dump();
+
+  const auto peak_bound = [&](double balls, double safety) {
+    const nlohmann::json u = verify::numerical_time_step_uncertainty(balls, safety, dir.string());
+    return u.value("estimated", false) ? u.at("peak_stress_pa").at("u_num_bound_relative_95").get<double>() : -1.0;
+  };
+  CHECK(peak_bound(1000, 0.8) == 0.04);
+  CHECK(peak_bound(1500, 0.4) == 0.03);
+  CHECK(peak_bound(600, 0.2) == 0.02);
+  CHECK(peak_bound(1000, 0.5) == 0.04); // a finer step than 0.8 is covered by 0.8's bound
+  CHECK(peak_bound(1000, 0.1) == 0.02); // finer than every level: the finest's
+  CHECK(peak_bound(1000, 0.9) == -1.0); // coarser than every level: not estimated
+  CHECK(peak_bound(54, 0.8) == -1.0);   // no study within a factor of two
+  CHECK(peak_bound(2500, 0.8) == -1.0);
+  const nlohmann::json u = verify::numerical_time_step_uncertainty(1000, 0.8, dir.string());
+  CHECK(u.at("peak_stress_pa").at("u_num_relative").get<double>() == 0.02);
+  CHECK(u.at("study_build") == "abc");
+  CHECK_FALSE(verify::numerical_time_step_uncertainty(54, 0.8, dir.string()).at("why").get<std::string>().empty());
+}
+
+TEST_CASE("time-step study: the recorded studies are read as they are", "[verify][time_step]")
+{
+  // The studies kept in cases/s02_time_step_study: what a 1000-ball run at
+  // the default safety states is the 0.8 level of results_1000.json.
+  const nlohmann::json u = verify::numerical_time_step_uncertainty(1000, 0.8);
+  REQUIRE(u.value("estimated", false));
+  std::ifstream in(verify::time_step_study_dir() + "/results_1000.json");
+  const nlohmann::json study = nlohmann::json::parse(in);
+  const nlohmann::json &level = study.at("quantities").at("peak_stress_pa").at("levels").at(0);
+  REQUIRE(level.at("safety").get<double>() == 0.8);
+  CHECK(u.at("peak_stress_pa").at("u_num_bound_relative_95") == level.at("u_num_bound_relative"));
 }

@@ -22,9 +22,15 @@
 // the law's slope is then built in, not predicted) and viscosities alone
 // (nothing scaled: the rate dependence comes from the Burger's viscosities
 // only, a prediction).  Each comparison error E = S - D is judged against
-// u_val = sqrt(u_S^2 + u_D^2) (u_S the seed-ensemble standard error of the
-// mean, u_D the law's assumed 10 %): the model error is resolved when
-// |E| > 2 u_val.  Validation may fail: the check reports its verdict; its
+// the ASME V&V 20 budget u_val = sqrt(u_num^2 + u_input^2 + u_D^2 + u_S^2):
+// u_num the time-step study's standard uncertainty for the sample
+// (verify/run/numerical_uncertainty.h; "not estimated" on the quick
+// lattice), u_input the fitted bond strength's standard error through the
+// model's sensitivity (the calibration's slope), u_D the law's assumed
+// 10 %, u_S the seed-ensemble standard error of the mean: the model error
+// is resolved when |E| > 2 u_val.  Strain at peak and initial modulus,
+// which the calibration did not set, are validated by their slopes
+// against the rate (rate-independent; exponent 0.29).  Validation may fail: the check reports its verdict; its
 // test asks only that every comparison is made.
 //
 // --quick runs the same study on a 54-ball lattice sample at 2.5 1/s (the
@@ -36,7 +42,9 @@
 #include "verify/checks/checks_support.h"
 #include "verify/cli/calibrate.h"
 #include "verify/cli/sweep.h"
+#include "verify/decks/deck.h"
 #include "verify/io/output.h"
+#include "verify/run/numerical_uncertainty.h"
 
 #include "dem/rate_scaling.h"
 
@@ -141,6 +149,39 @@ double number_at(const nlohmann::json &j, const char *key)
   return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : std::nan("");
 }
 
+/// The standard uncertainties of one validation comparison (ASME V&V 20) [Pa].
+struct ValidationBudget
+{
+  double num, input, d, s;
+  double val() const { return std::sqrt(num * num + input * input + d * d + s * s); }
+};
+
+struct Slope
+{
+  double value, se;
+};
+
+/// The weighted least-squares slope of y (ln y when `log_y`) on ln x, each
+/// point weighted by the inverse square of its (relative, for ln y) 95 %
+/// half-width; the slope's standard error from the scatter about the line
+/// (GSL gsl_fit_wlinear, its covariance scaled by chi^2 / (n - 2)).
+Slope weighted_slope(const std::vector<double> &x, const std::vector<double> &y, const std::vector<double> &half,
+                     bool log_y)
+{
+  std::vector<double> lx, ly, w;
+  for (std::size_t k = 0; k < x.size(); ++k)
+  {
+    lx.push_back(std::log(x[k]));
+    ly.push_back(log_y ? std::log(y[k]) : y[k]);
+    const double h = log_y ? half[k] / y[k] : half[k];
+    w.push_back(h > 0 && std::isfinite(h) ? 1 / (h * h) : 1.0);
+  }
+  double c0 = 0, c1 = 0, cov00 = 0, cov01 = 0, cov11 = 0, chisq = 0;
+  gsl_fit_wlinear(lx.data(), 1, w.data(), 1, ly.data(), 1, lx.size(), &c0, &c1, &cov00, &cov01, &cov11, &chisq);
+  const double dof = double(lx.size()) - 2;
+  return {c1, std::sqrt(cov11 * std::max(1.0, dof > 0 ? chisq / dof : 1.0))};
+}
+
 } // namespace
 
 CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
@@ -210,36 +251,72 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   CheckOutcome out;
   const std::vector<std::string> labels = {"strengths and stiffnesses scaled (slope built in)",
                                            "viscosities alone (predicted)"};
-  std::vector<std::vector<double>> x(2), y(2), bar(2);
+  // The input uncertainty: the fitted strength's relative standard error
+  // (seeds and the law's 10 % at the calibration point) through the
+  // model's own sensitivity there, d ln S / d ln(strength) = the
+  // calibration's slope over its fitted mean, taken as the same elasticity
+  // at every held-out condition.
+  const nlohmann::json &target = c.at("targets").at(0);
+  const nlohmann::json &slopes = target.at("slope_per_ln_parameter"); // one per fitted parameter: the strength
+  const double elasticity =
+    (slopes.size() == 1 && slopes.at(0).is_number() ? slopes.at(0).get<double>() : std::nan("")) /
+    number_at(target, "fitted_mean");
+  const double input_relative = std::abs(elasticity) * number_at(c.at("parameters").at(0), "relative_standard_error");
+  const double safety = Deck::from_file(s.deck, s.sample).real("motion/time step safety");
+  std::vector<std::vector<double>> x(2), y(2), bar(2), strain(2), strain_bar(2), modulus(2), modulus_bar(2);
+  std::vector<double> budget_x;
+  std::vector<std::vector<double>> budget(4);
   for (std::size_t k = 0; k < conditions.size(); ++k)
     for (std::size_t g = 0; g < configurations.size(); ++g)
     {
-      std::vector<double> peaks;
+      std::vector<double> peaks, strains, moduli;
+      double balls = 0;
       for (int seed = 0; seed < s.seeds; ++seed)
       {
-        peaks.push_back(completed_member(outcome, (k * configurations.size() + g) * std::size_t(s.seeds) + seed,
-                                         condition_name(conditions[k]) + ", " + labels[g] + ", seed " +
-                                           std::to_string(plan.first_seed + seed))
-                          .peak);
+        const SweepRow &row = completed_member(outcome, (k * configurations.size() + g) * std::size_t(s.seeds) + seed,
+                                               condition_name(conditions[k]) + ", " + labels[g] + ", seed " +
+                                                 std::to_string(plan.first_seed + seed));
+        peaks.push_back(row.peak);
+        strains.push_back(row.strain);
+        moduli.push_back(row.modulus);
+        balls = row.particles;
       }
       const EnsembleStatistics st = ensemble_statistics(peaks);
-      const double mean = st.mean, se = st.se;
+      const double mean = st.mean;
       const double law = law_peak(conditions[k]);
-      const double u_val = std::hypot(se, law_relative_uncertainty * law);
+      const nlohmann::json numerical = numerical_time_step_uncertainty(balls, safety);
+      const bool num_known = numerical.value("estimated", false);
+      const ValidationBudget u{
+        num_known ? mean * numerical.at("peak_stress_pa").at("u_num_relative").get<double>() : 0.0,
+        mean * input_relative, law_relative_uncertainty * law, st.se};
       const double error = mean - law;
       out.metrics.push_back(bound(condition_name(conditions[k]) + " (rate_T " + num(compensated(conditions[k])) +
                                     " 1/s), " + labels[g] + ": |S - D| / u_val",
-                                  std::abs(error) / u_val, 2, false, ToleranceClass::D,
-                                  "validation comparison error E = S - D against u_val = sqrt(u_S^2 + u_D^2), u_S "
-                                  "the seed-ensemble standard error of the mean, u_D the law's assumed 10 %: the "
-                                  "model error is resolved (the prediction fails) when |E| > 2 u_val"));
-      out.notes.push_back(condition_name(conditions[k]) + ", " + labels[g] + ": S = " + num(mean / 1e6) + " +- " +
-                          num(se / 1e6) + " MPa (" + std::to_string(s.seeds) + " seeds), law D = " +
-                          num(law / 1e6) + " MPa, E = " + num(error / 1e6) + " MPa (" + num(100 * error / law) +
-                          " %), u_val = " + num(u_val / 1e6) + " MPa");
+                                  std::abs(error) / u.val(), 2, false, ToleranceClass::D,
+                                  "validation comparison error E = S - D against the ASME V&V 20 budget u_val = "
+                                  "sqrt(u_num^2 + u_input^2 + u_D^2 + u_S^2): u_num the time-step study's standard "
+                                  "uncertainty, u_input the fitted strength's standard error through the model's "
+                                  "sensitivity, u_D the law's assumed 10 %, u_S the seed-ensemble standard error "
+                                  "of the mean; the model error is resolved (the prediction fails) when |E| > 2 "
+                                  "u_val"));
+      out.notes.push_back(condition_name(conditions[k]) + ", " + labels[g] + ": S = " + num(mean / 1e6) +
+                          " MPa (" + std::to_string(s.seeds) + " seeds), law D = " + num(law / 1e6) + " MPa, E = " +
+                          num(error / 1e6) + " MPa (" + num(100 * error / law) + " %); u_num " +
+                          (num_known ? num(u.num / 1e6) + " MPa" : "not estimated (" + numerical.value("why", "") + ")") +
+                          ", u_input " + num(u.input / 1e6) + " MPa, u_D " + num(u.d / 1e6) + " MPa, u_S " +
+                          num(u.s / 1e6) + " MPa, u_val " + num(u.val() / 1e6) + " MPa");
       x[g].push_back(compensated(conditions[k]));
       y[g].push_back(mean);
       bar[g].push_back(st.ci95);
+      strain[g].push_back(ensemble_statistics(strains).mean);
+      strain_bar[g].push_back(ensemble_statistics(strains).ci95);
+      modulus[g].push_back(ensemble_statistics(moduli).mean);
+      modulus_bar[g].push_back(ensemble_statistics(moduli).ci95);
+      budget_x.push_back(double(budget_x.size() + 1));
+      budget[0].push_back(100 * u.num / mean);
+      budget[1].push_back(100 * u.input / mean);
+      budget[2].push_back(100 * u.d / mean);
+      budget[3].push_back(100 * u.s / mean);
     }
 
   // The slope of ln(peak) on ln(rate_T) over the held-out conditions,
@@ -263,6 +340,37 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                                 "point's relative uncertainty (seeds and the law's 10 %)"));
     out.notes.push_back(labels[g] + ": slope " + num(c1) + " +- " + num(std::sqrt(cov11)) + " against n = 0.29");
   }
+
+  // Quantities the calibration did not set.  The experiments' strain at the
+  // peak is about independent of the rate (thesis §4.4), and their initial
+  // stiffness follows the peak's exponent (§4.4.2): slopes over the held-out
+  // conditions, each point weighted by its seed ensemble's 95 % half-width.
+  // With stiffnesses scaled by (rate_T / 0.1)^0.29 the modulus slope is
+  // built in; with viscosities alone it is predicted.
+  for (std::size_t g = 0; g < configurations.size(); ++g)
+  {
+    const Slope strain_slope = weighted_slope(x[g], strain[g], strain_bar[g], false);
+    out.metrics.push_back(bound("strain at peak against ln(rate_T), " + labels[g] + ": |slope| / its standard error",
+                                std::abs(strain_slope.value) / strain_slope.se, 2, false, ToleranceClass::D,
+                                "validation of a quantity the calibration did not set: the experiments' strain at "
+                                "the peak is about rate-independent, so a slope resolved above twice its standard "
+                                "error is a model error"));
+    const Slope modulus_slope = weighted_slope(x[g], modulus[g], modulus_bar[g], true);
+    out.metrics.push_back(bound("slope of ln(initial modulus) on ln(rate_T), " + labels[g] +
+                                  ": |slope - 0.29| / its standard error",
+                                std::abs(modulus_slope.value - law_exponent) / modulus_slope.se, 2, false,
+                                ToleranceClass::D,
+                                "validation of a quantity the calibration did not set: the experiments' initial "
+                                "stiffness follows the peak's exponent 0.29 (built in where stiffnesses are scaled)"));
+    out.notes.push_back(labels[g] + ": strain at peak slope " + num(strain_slope.value) + " +- " +
+                        num(strain_slope.se) + " per unit ln(rate_T); initial modulus slope " +
+                        num(modulus_slope.value) + " +- " + num(modulus_slope.se) + " against 0.29");
+  }
+  out.notes.push_back("what is held out: the conditions (rates and temperatures) were never used in the fit, and the "
+                      "seeds differ from the calibration's; what is not: the Table 7.4 constants were chosen by the "
+                      "thesis on these same tests, and the law's value at every condition shares sigma_0 = 10.3 "
+                      "MPa with the calibration target, so u_D and u_input are correlated (treated as independent, "
+                      "as V&V 20 does: conservative for the verdict)");
 
   const nlohmann::json &t = c.at("targets").at(0);
   std::vector<double> law_x, law_y;
@@ -293,6 +401,19 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   f.log_x = true;
   f.log_y = true;
   out.figures.push_back(f);
+
+  const std::vector<std::string> parts = {"u_num (time step)", "u_input (fitted strength)", "u_D (law, assumed 10 %)",
+                                          "u_S (seeds)"};
+  std::vector<Curve> bars;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    bars.push_back(curve(parts[k], budget_x, budget[k], CurveStyle::markers_and_line));
+  Figure b = make_figure("table_7_4_budget", "The validation uncertainty budget, part by part",
+                         "comparison (condition and configuration, in the order of the notes) [-]",
+                         "standard uncertainty [% of S]", bars,
+                         "ASME V&V 20: u_val = sqrt(u_num^2 + u_input^2 + u_D^2 + u_S^2); each part at each "
+                         "comparison of the metrics table, in per cent of the prediction S.");
+  b.key = "outside right";
+  out.figures.push_back(b);
   return out;
 }
 } // namespace verify

@@ -58,6 +58,7 @@ struct CompareSpec
   unsigned int refinements = 2;     ///< continuum global refinements
   unsigned int time_steps = 200;    ///< continuum uniform steps over the history
   bool dem_time_step_study = false; ///< rerun the DEM bulk test at half the time-step safety
+  double tolerance = 0.05;          ///< relative difference that passes inside the identity's conditions [-]
 };
 
 CompareSpec parse_compare(const Deck &deck);

@@ -1,6 +1,7 @@
 #include "verify/kinds/uniaxial.h"
 
 #include "verify/run/analysis.h"
+#include "verify/run/numerical_uncertainty.h"
 #include "verify/decks/deck_sections.h"
 #include "verify/io/input.h"
 #include "verify/io/paraview.h"
@@ -433,6 +434,8 @@ public:
       {"steps", sim.steps()},
       {"last_time_step_s", sim.time_step()},
       {"critical_time_step_bound_s", sim.critical_time_step()},
+      {"uncertainty", {{"numerical_time_step", numerical_time_step_uncertainty(double(n),
+                                                                               spec_.motion.time_step_safety)}}},
       {"contact_resolution", resolved},
       {"neighbour_rebuilds", sim.neighbors().rebuilds()},
       {"energy_j", {{"kinetic", e.kinetic}, {"strain", e.strain}, {"friction", e.friction},
