@@ -191,7 +191,7 @@ std::string gnuplot_script(const Figure &f)
 {
   std::ostringstream o;
   o << "# demvv figure " << f.name << ": " << comment_text(f.title) << "\n"
-    << "# Redraw with `gnuplot " << f.name << ".gp` in this folder (writes " << f.name << ".svg).\n"
+    << "# Redraw with: gnuplot " << f.name << ".gp (in this folder; it writes " << f.name << ".svg)\n"
     << "reset\n"
     << "set terminal svg size 760,460 noenhanced font 'Sans,12' background rgb 'white'\n"
     << "set encoding utf8\n"
