@@ -18,7 +18,9 @@
 #   - text with control characters or '#' in a deck value, and a wall name
 #     that would break a CSV header, are refused with the one-line error;
 #   - a file-size limit ends a run with exit 4 (not SIGXFSZ), SIGHUP as
-#     SIGTERM does (exit 143, checkpoint).
+#     SIGTERM does (exit 143, checkpoint);
+#   - a resume refuses a series cut since the pause and an input file
+#     changed since the run began, and leaves the paused summary as it was.
 # Each of these failed before the ownership marker, the locks and the
 # sanitised script writer.
 # Usage: run_directory_security.sh DEMVV CASES_DIR
@@ -155,4 +157,24 @@ wait $long
 code=$?
 long=""
 [ $code -eq 143 ] && [ -f "$work/hup/checkpoint/driver.json" ] || fail "SIGHUP ended the run with $code, expected 143 and a checkpoint"
+# 7. Checkpoints that cannot lie: a series cut after the pause is refused
+# (never padded with NUL bytes), an input file changed after the pause is
+# refused, and a refused resume leaves the paused run's summary as it was.
+mkdir "$work/own"
+cp "$cases/v01_linear_impact/balls.csv" "$work/own/"
+sed "s|set file = .*balls.csv|set file = balls.csv|" "$work/r/deck.prm" > "$work/own/deck.prm"
+run "$work/own/deck.prm" --out "$work/cut" --pause-after 500 2>/dev/null || fail "the paused run failed"
+cp "$work/cut/summary.json" "$work/paused_summary"
+size=$(wc -c < "$work/cut/series.csv")
+head -c $((size - 200)) "$work/cut/series.csv" > "$work/short" && cp "$work/short" "$work/cut/series.csv"
+run "$work/own/deck.prm" --resume "$work/cut" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "shorter than" "$work/err" || fail "a resume on a cut series: $(cat "$work/err")"
+one_line "$work/err" "a cut series"
+! tr -d '\n' < "$work/cut/series.csv" | od -An -c | grep -q '\\0' || fail "the series was padded with NUL bytes"
+cmp -s "$work/cut/summary.json" "$work/paused_summary" || fail "a refused resume rewrote the paused run's summary"
+run "$work/own/deck.prm" --out "$work/changed" --pause-after 500 2>/dev/null || fail "the second paused run failed"
+sed -i '$ s/^\(.\)/9\1/' "$work/own/balls.csv"
+run "$work/own/deck.prm" --resume "$work/changed" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "balls.csv changed since the run began" "$work/err" || fail "a resume on a changed input: $(cat "$work/err")"
+grep -q '"paused"' "$work/changed/summary.json" || fail "a refused resume lost the paused state"
 echo "run directory security: ok"

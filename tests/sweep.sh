@@ -55,6 +55,15 @@ assert math.isclose(float(stats[0]["peak_stress_mean_pa"]), mean, rel_tol=1e-10)
 assert math.isclose(float(stats[0]["peak_stress_sd_pa"]), sd, rel_tol=1e-10), stats[0]
 assert math.isclose(float(stats[0]["peak_stress_ci95_pa"]), t * sd / math.sqrt(2), rel_tol=1e-9), stats[0]
 assert stats[1]["peak_stress_mean_pa"] == "", stats[1]
+# The budget of each mean: u_seed its standard error, u_num as the members'
+# summaries state it (empty where no time-step study applies).
+assert math.isclose(float(stats[0]["peak_stress_u_seed_pa"]), sd / math.sqrt(2), rel_tol=1e-9), stats[0]
+first = json.load(open(d + "/members/" + members[0] + "/summary.json"))["uncertainty"]["numerical_time_step"]
+if first["estimated"]:
+    expected = mean * first["peak_stress_pa"]["u_num_relative"]
+    assert math.isclose(float(stats[0]["peak_stress_u_num_pa"]), expected, rel_tol=1e-9), stats[0]
+else:
+    assert first["why"] and stats[0]["peak_stress_u_num_pa"] == "", (first, stats[0])
 # The figure's data: the means against the friction (the refused point left
 # out), then every member, then the 95 % half-widths as error bars.
 blocks = [[[float(x) for x in l.split(",")] for l in b.strip().splitlines() if not l.startswith("#")]

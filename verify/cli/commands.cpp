@@ -134,7 +134,12 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   on_rank_zero_for_all(kind->on_every_mpi_rank, [&] {
     lock = std::make_unique<DirectoryLock>(o.out_dir, "run");
     if (!o.resume)
-      claim_run_directory(o.out_dir, o.replace, [&] { kind->parse(deck); }, deck.input_files());
+    {
+      std::vector<std::string> inputs = deck.input_files();
+      if (!deck.path().empty())
+        inputs.push_back(std::filesystem::weakly_canonical(std::filesystem::absolute(deck.path())).string());
+      claim_run_directory(o.out_dir, o.replace, [&] { kind->parse(deck); }, inputs);
+    }
     else if (!marked_as(o.out_dir, "run"))
       throw DeckError("--resume '" + o.out_dir + "': holds no demvv marker (" + ownership_marker +
                       "), so it is no run directory demvv made: expected the directory of a paused or interrupted "

@@ -319,6 +319,19 @@ SweepRow read_row(const std::string &dir, const Member &m)
   row.broken = broken_at_peak(dir, summary);
   if (summary.contains("sample") && summary.at("sample").is_object())
     row.particles = number(summary.at("sample"), "particles");
+  try
+  {
+    const nlohmann::json &u = summary.at("uncertainty").at("numerical_time_step");
+    if (u.value("estimated", false))
+    {
+      row.u_num_peak = number(u.at("peak_stress_pa"), "u_num_relative");
+      row.u_num_strain = number(u.at("strain_at_peak"), "u_num_relative");
+      row.u_num_modulus = number(u.at("initial_modulus_pa"), "u_num_relative");
+    }
+  }
+  catch (const nlohmann::json::exception &)
+  {
+  }
   return row;
 }
 
@@ -378,10 +391,14 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
   s << "# demvv sweep of " << base_path
     << ": per set of varied values, over the completed seeds: n, mean, sample standard deviation (sd) and the "
        "95 % confidence half-width of the mean (ci95, Student t with n - 1 degrees of freedom; sd and ci95 need n "
-       ">= 2); units: *_pa [Pa], strain [-]\n"
+       ">= 2); the budget of each mean as standard uncertainties: u_seed (the standard error of the mean) and "
+       "u_num (the time-step study's, for the members' sample size and step; empty: not estimated, no study "
+       "applies); units: *_pa [Pa], strain [-]\n"
     << "group," << keys
     << "n,peak_stress_mean_pa,peak_stress_sd_pa,peak_stress_ci95_pa,strain_at_peak_mean,strain_at_peak_sd,"
-       "strain_at_peak_ci95,initial_modulus_mean_pa,initial_modulus_sd_pa,initial_modulus_ci95_pa\n";
+       "strain_at_peak_ci95,initial_modulus_mean_pa,initial_modulus_sd_pa,initial_modulus_ci95_pa,"
+       "peak_stress_u_seed_pa,peak_stress_u_num_pa,strain_at_peak_u_seed,strain_at_peak_u_num,"
+       "initial_modulus_u_seed_pa,initial_modulus_u_num_pa\n";
   std::size_t group = 0;
   for (std::size_t first = 0; first < members.size(); ++group)
   {
@@ -389,6 +406,9 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     while (last < members.size() && members[last].values == members[first].values)
       ++last;
     std::vector<double> peak, strain, modulus;
+    // u_num of the point: the largest any of its members states (they share
+    // the sample size and step; NaN when one has none).
+    double u_peak = 0, u_strain = 0, u_modulus = 0;
     std::size_t n = 0;
     for (std::size_t i = first; i < last; ++i)
       if (rows[i].status == "completed")
@@ -397,14 +417,22 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
         peak.push_back(rows[i].peak);
         strain.push_back(rows[i].strain);
         modulus.push_back(rows[i].modulus);
+        u_peak = std::isnan(rows[i].u_num_peak) ? rows[i].u_num_peak : std::max(u_peak, rows[i].u_num_peak);
+        u_strain = std::isnan(rows[i].u_num_strain) ? rows[i].u_num_strain : std::max(u_strain, rows[i].u_num_strain);
+        u_modulus =
+          std::isnan(rows[i].u_num_modulus) ? rows[i].u_num_modulus : std::max(u_modulus, rows[i].u_num_modulus);
       }
     s << group << ",";
     for (const std::string &v : members[first].values)
       s << v << ",";
     s << n;
-    for (const EnsembleStatistics &st :
-         {ensemble_statistics(peak), ensemble_statistics(strain), ensemble_statistics(modulus)})
+    const EnsembleStatistics stats[3] = {ensemble_statistics(peak), ensemble_statistics(strain),
+                                         ensemble_statistics(modulus)};
+    for (const EnsembleStatistics &st : stats)
       s << "," << cell(st.mean) << "," << cell(st.sd) << "," << cell(st.ci95);
+    const double u_num[3] = {u_peak, u_strain, u_modulus};
+    for (int q = 0; q < 3; ++q)
+      s << "," << cell(stats[q].se) << "," << cell(n > 0 ? u_num[q] * std::abs(stats[q].mean) : std::nan(""));
     s << "\n";
     first = last;
   }

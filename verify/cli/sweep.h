@@ -26,7 +26,10 @@
 // strain at peak, initial modulus, Poisson's ratio, bond breakage at the
 // peak, the sample's ball count, run time); DIR/stats.csv has, per set of
 // varied values, the mean, standard deviation and 95 % Student-t confidence
-// half-width over the completed seeds.  Both are built from the members'
+// half-width over the completed seeds, and the uncertainty budget of each
+// mean: u_seed (its standard error) and u_num (the time-step study's
+// standard uncertainty for the members' sample size and step, empty where
+// none applies: verify/run/numerical_uncertainty.h).  Both are built from the members'
 // run directories alone (summary.json, series.csv), rewritten atomically as
 // members complete.  DIR/plots holds the study's figures, drawn when the
 // sweep ends (gnuplot scripts and their data beside the SVG pictures): peak
@@ -109,6 +112,12 @@ struct SweepRow
   double broken = std::numeric_limits<double>::quiet_NaN();  ///< bonds broken at the peak [-]
   double particles = std::numeric_limits<double>::quiet_NaN(); ///< balls in the sample [-]
   double seconds = std::numeric_limits<double>::quiet_NaN(); ///< run time [s]
+  /// The time-step study's standard uncertainty u_num of peak stress, strain
+  /// at peak and initial modulus, relative, as the member's summary states it
+  /// (uncertainty/numerical_time_step); NaN where it is not estimated.
+  double u_num_peak = std::numeric_limits<double>::quiet_NaN();
+  double u_num_strain = std::numeric_limits<double>::quiet_NaN();
+  double u_num_modulus = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SweepOutcome

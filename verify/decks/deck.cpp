@@ -603,7 +603,8 @@ std::array<double, 3> Deck::vector3(const std::string &key) const
 }
 
 DeckRecord::DeckRecord(const Deck &deck)
-  : path(deck.path()), name(deck.name()), resolved(deck.resolved()), overrides(deck.overrides())
+  : path(deck.path()), name(deck.name()), resolved(deck.resolved()), overrides(deck.overrides()),
+    inputs(deck.input_files())
 {
 }
 
@@ -679,8 +680,6 @@ std::string Deck::resolved() const
 std::vector<std::string> Deck::input_files() const
 {
   std::vector<std::string> files;
-  if (!impl_->path.empty())
-    files.push_back(absolute_file(impl_->path));
   for (const auto &[key, e] : impl_->entries)
     if (e.file && !e.value.empty())
       files.push_back(absolute_file(file(key)));

@@ -112,6 +112,7 @@ struct DeckRecord
   std::string name;     ///< Deck::name()
   std::string resolved; ///< Deck::resolved()
   std::vector<std::string> overrides; ///< Deck::overrides()
+  std::vector<std::string> inputs;    ///< Deck::input_files()
 
   DeckRecord() = default;
   DeckRecord(const Deck &deck); // NOLINT: a deck is a record of itself
@@ -156,8 +157,8 @@ public:
   std::vector<double> real_list(const std::string &key) const;
   /// A relative file name from the deck resolved against directory().
   std::string file(const std::string &key) const;
-  /// The deck file and every file its entries name, absolute (links and
-  /// ".." resolved where the file exists).
+  /// Every file the deck's entries name (a sample, a particle CSV, ...),
+  /// absolute (links and ".." resolved where the file exists).
   std::vector<std::string> input_files() const;
   /// The instances of a repeated section, e.g. instances("walls", "plane")
   /// gives {"plane 1", "plane top"}, in the order the deck first names them.

@@ -164,10 +164,28 @@ CsvSeries::CsvSeries(const std::string &path, const std::string &comment,
     output_failed(path, "cannot write the header", error);
 }
 
+void sync_file(const std::string &path)
+{
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0)
+    return;
+  const int failed = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (failed != 0)
+    output_failed(path, "cannot flush to disk", error);
+}
+
 CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_t keep)
   : columns_(columns), path_(path)
 {
   std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size < keep)
+    throw std::runtime_error(path + ": " + (ec ? "missing" : std::to_string(size) + " bytes") +
+                             ", shorter than the " + std::to_string(keep) +
+                             " bytes its checkpoint recorded: the file was cut or replaced since the run paused: "
+                             "expected the run's own file (or the run from its start, --replace)");
   std::filesystem::resize_file(path, keep, ec);
   if (ec)
     throw std::runtime_error(path + ": cannot continue the file of the checkpoint: " + ec.message());

@@ -41,6 +41,10 @@ void write_atomically(const std::string &path, const std::string &content);
 /// replaced; anything else as write_atomically().
 void write_named_output(const std::string &path, const std::string &content);
 
+/// Flushes a written file to the disk (fsync(2)); OutputError when the
+/// system cannot, nothing when the file does not exist.
+void sync_file(const std::string &path);
+
 /// Creates a directory and its parents; throws DeckError-free std::runtime_error on failure.
 void make_directories(const std::string &path);
 
@@ -50,7 +54,8 @@ public:
   /// Creates (truncates) the file and writes a comment line and the header.
   CsvSeries(const std::string &path, const std::string &comment, const std::vector<std::string> &columns);
   /// Continues a file written earlier: cuts it back to its first `keep`
-  /// bytes (whole rows, as a checkpoint recorded them) and appends.
+  /// bytes (whole rows, as a checkpoint recorded them) and appends; a file
+  /// shorter than `keep` (cut since) is refused, never padded.
   CsvSeries(const std::string &path, std::size_t columns, std::uintmax_t keep);
   ~CsvSeries();
   CsvSeries(const CsvSeries &) = delete;

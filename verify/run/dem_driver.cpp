@@ -187,6 +187,7 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
     for (const std::vector<double> &r : f.series->all_rows())
       rows.push_back(exact_values(r));
     const std::string path = dir + "/" + f.file;
+    sync_file(path); // the rows on disk before the checkpoint counts them
     series.push_back({{"file", f.file},
                       {"bytes", std::filesystem::exists(path) ? std::filesystem::file_size(path) : 0},
                       {"rows", std::move(rows)}});
@@ -200,6 +201,8 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
                               {"cadence", cadence.state()},
                               {"protocol", exact_values(protocol.checkpoint_values())},
                               {"files", files.checkpoint_state()},
+                              {"inputs", files.directory() ? files.directory()->input_hashes()
+                                                           : nlohmann::json::object()},
                               {"series", std::move(series)}};
   // The driver's state is written last: a checkpoint whose state file names
   // another step than its sample file is refused on resume.
@@ -354,6 +357,16 @@ void check_resumable(const std::string &run_dir, const Deck &deck)
     throw DeckError(run_dir + ": its checkpoint was written by another deck (or other --set values): expected "
                               "the deck the run started with, as recorded in " +
                     run_dir + "/deck.prm");
+  // ... and with the files it read: a sample or particle file changed
+  // between the pause and the resume would continue another run.
+  const nlohmann::json recorded = doc.value("inputs", nlohmann::json::object());
+  const nlohmann::json now = hash_input_files(DeckRecord(deck).inputs);
+  for (const auto &[path, hash] : recorded.items())
+    if (!now.contains(path) || now.at(path) != hash)
+      throw DeckError(run_dir + ": the input file " + path + (now.contains(path) ? " changed" : " is gone") +
+                      " since the run began (its FNV-1a hash was " + hash.get<std::string>() +
+                      "): expected the files the run started with, or the run from its start (--out " + run_dir +
+                      " --replace)");
   // A run goes on bit for bit only with the arithmetic it started with.
   if (!made_by_this_build(doc.value("build", nlohmann::json())))
     throw DeckError(run_dir + ": its checkpoint was written by another build of demvv (its provenance is in " +
@@ -380,7 +393,10 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
       throw;
     }
   if (dir && options.resume)
+  {
     resume_from_checkpoint(sim, protocol, files, cadence, options.out_dir);
+    dir->write_summary({{"status", {{"state", "running"}}}});
+  }
   else if (dir)
   {
     const std::string cadence_note = output.interval > 0 ? "; a row every " + format_number(output.interval) + " of " +

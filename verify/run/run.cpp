@@ -248,8 +248,21 @@ void record_failure(RunStatus &status, const continuum::NumericalFailure &failur
   status.message = failure.what();
 }
 
-RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed)
-  : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_(deck)
+nlohmann::json hash_input_files(const std::vector<std::string> &paths)
+{
+  nlohmann::json hashes = nlohmann::json::object();
+  for (const std::string &p : paths)
+  {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(p, ec))
+      hashes[p] = fnv1a_hex(read_input(p, "input file", max_table_bytes));
+  }
+  return hashes;
+}
+
+RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed,
+                           bool resuming)
+  : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_(deck), input_hashes_(hash_input_files(deck.inputs))
 {
   make_directories(dir);
   mark_directory(dir, "run");
@@ -257,6 +270,8 @@ RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int t
   provenance_ = provenance(threads, seed, resolved);
   provenance_["deck_file"] = deck.path;
   provenance_["resolved_deck"] = "deck.prm";
+  if (resuming)
+    return;
   write_atomically(path("deck.prm"), resolved);
   write_summary({{"status", {{"state", "running"}}}});
 }
@@ -297,7 +312,7 @@ RunFiles::RunFiles(const RunOptions &options, const DeckRecord &deck, int thread
 {
   if (options.out_dir.empty())
     return;
-  dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed);
+  dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed, options.resume);
   if (!options.resume)
     breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"),
                                           convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
@@ -324,7 +339,10 @@ nlohmann::json RunFiles::checkpoint_state() const
 {
   nlohmann::json state = nlohmann::json::object();
   if (dir_)
+  {
+    sync_file(dir_->path("bond_breaks.csv"));
     state["bond_breaks_bytes"] = std::filesystem::file_size(dir_->path("bond_breaks.csv"));
+  }
   if (paraview_)
     state["paraview"] = paraview_->state();
   return state;

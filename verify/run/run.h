@@ -81,8 +81,11 @@ struct RunStatus
 class RunDirectory
 {
 public:
-  /// Creates the directory, writes deck.prm and a "running" summary.json.
-  RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed);
+  /// Creates the directory, writes deck.prm and a "running" summary.json;
+  /// `resuming`: the directory's deck.prm and summary stay as they are until
+  /// the checkpoint has been read back (a refused resume leaves the paused
+  /// run's summary and its resume command).
+  RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed, bool resuming = false);
   std::string path(const std::string &file) const { return dir_ + "/" + file; }
   /// Rewrites summary.json atomically; provenance is added.
   void write_summary(nlohmann::json summary) const;
@@ -90,13 +93,20 @@ public:
   const std::string &deck_hash() const { return deck_hash_; }
   /// The deck the run was started from.
   const DeckRecord &deck() const { return deck_; }
+  /// FNV-1a of each file the deck names ({path: hash}), as the run read
+  /// them: a checkpoint records them, a resume on changed files is refused.
+  const nlohmann::json &input_hashes() const { return input_hashes_; }
 
 private:
   std::string dir_;
   std::string deck_hash_;
   DeckRecord deck_;
   nlohmann::json provenance_;
+  nlohmann::json input_hashes_ = nlohmann::json::object();
 };
+
+/// {path: FNV-1a of its contents} of the files that exist among `paths`.
+nlohmann::json hash_input_files(const std::vector<std::string> &paths);
 
 class ParaviewWriter;
 class CsvSeries;
@@ -111,6 +121,7 @@ public:
            const std::string &convention, bool paraview);
   ~RunFiles();
   RunDirectory *directory() { return dir_.get(); }
+  const RunDirectory *directory() const { return dir_.get(); }
   ParaviewWriter *paraview() { return paraview_.get(); }
   /// Takes the simulation's new bond breaks into bond_breaks.csv and the
   /// ParaView break log.
