@@ -142,11 +142,10 @@ DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
                     (pid.empty() ? std::string() : " (pid " + pid + ")") +
                     ": expected it to finish first, or another --out");
   }
+  // The pid is a courtesy for a second process's message; the lock holds without it.
   const std::string pid = std::to_string(::getpid()) + "\n";
-  if (::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) < 0)
-  {
-    // The pid is a courtesy for the message above; the lock holds without it.
-  }
+  [[maybe_unused]] const bool noted =
+    ::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) == static_cast<ssize_t>(pid.size());
 }
 
 DirectoryLock::~DirectoryLock()
