@@ -109,6 +109,9 @@ int main(int argc, char **argv)
                         "OpenMP threads per member, at most, changed during a DEM member as the load does (default: "
                         "OMP_NUM_THREADS, kept exactly, else the idle cores, shared among MPI ranks)")
     ->check(CLI::Range(1, 1024));
+  sweep_cmd->add_option("--max-members", sweep.settings.max_members,
+                        "The most members the sweep may have (default 10000); more are refused before planning")
+    ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   bool sweep_quiet = false;
   sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");
   sweep_cmd->footer(kinds_help);

@@ -673,6 +673,12 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
   if (o.out_dir.empty())
     throw DeckError("sweep of " + plan.base_deck + ": no --out: expected the sweep directory");
 
+  const std::size_t count = plan.points.size() * std::size_t(std::max(plan.seeds, 1));
+  if (count > o.max_members)
+    throw DeckError("sweep of " + plan.base_deck + ": " + std::to_string(plan.points.size()) + " point(s) x " +
+                    std::to_string(std::max(plan.seeds, 1)) + " seed(s) = " + std::to_string(count) +
+                    " members: expected at most " + std::to_string(o.max_members) +
+                    " (--max-members N to allow more, knowing each member is a run)");
   std::vector<Member> members = plan_members(plan);
   std::unique_ptr<DirectoryLock> lock; // rank 0's, for the whole sweep
   on_rank_zero_for_all(true, [&] {

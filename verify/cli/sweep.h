@@ -72,6 +72,10 @@ struct SweepSettings
   int threads = 0;
   bool progress = true;
   bool figures = true;      ///< draw DIR/plots when the sweep ends
+  /// The most members a sweep plans; more are refused before any is
+  /// planned (a mistyped --seeds or list would plan for minutes, then run
+  /// for years).  --max-members raises it knowingly.
+  std::size_t max_members = 10000;
   std::string command_line; ///< as typed, for sweep.json
 };
 
