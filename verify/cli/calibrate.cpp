@@ -421,8 +421,6 @@ std::vector<std::vector<double>> covariance(const std::vector<std::vector<double
   return out;
 }
 
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
 void Calibration::write_outputs(const std::string &status, const Evaluation *final) const
 {
   if (mpi_.rank != 0)

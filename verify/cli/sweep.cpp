@@ -343,7 +343,6 @@ bool finished(const std::string &dir, const Member &m)
   return status == "completed" || status == "refused";
 }
 
-std::string cell(double v) { return std::isfinite(v) ? format_number(v) : ""; }
 
 std::string quoted(std::string text)
 {
@@ -381,9 +380,9 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     t << m.index << ",";
     for (const std::string &v : m.values)
       t << v << ",";
-    t << (m.seed > 0 ? std::to_string(m.seed) : "") << "," << r.status << "," << cell(r.peak) << ","
-      << cell(r.strain) << "," << cell(r.modulus) << "," << cell(r.poisson) << "," << cell(r.broken) << ","
-      << cell(r.particles) << "," << cell(r.seconds) << "," << (r.message.empty() ? "" : quoted(r.message)) << "\n";
+    t << (m.seed > 0 ? std::to_string(m.seed) : "") << "," << r.status << "," << csv_cell(r.peak) << ","
+      << csv_cell(r.strain) << "," << csv_cell(r.modulus) << "," << csv_cell(r.poisson) << "," << csv_cell(r.broken) << ","
+      << csv_cell(r.particles) << "," << csv_cell(r.seconds) << "," << (r.message.empty() ? "" : quoted(r.message)) << "\n";
   }
   write_atomically(out + "/sweep.csv", t.str());
 
@@ -429,10 +428,10 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     const EnsembleStatistics stats[3] = {ensemble_statistics(peak), ensemble_statistics(strain),
                                          ensemble_statistics(modulus)};
     for (const EnsembleStatistics &st : stats)
-      s << "," << cell(st.mean) << "," << cell(st.sd) << "," << cell(st.ci95);
+      s << "," << csv_cell(st.mean) << "," << csv_cell(st.sd) << "," << csv_cell(st.ci95);
     const double u_num[3] = {u_peak, u_strain, u_modulus};
     for (int q = 0; q < 3; ++q)
-      s << "," << cell(stats[q].se) << "," << cell(n > 0 ? u_num[q] * std::abs(stats[q].mean) : std::nan(""));
+      s << "," << csv_cell(stats[q].se) << "," << csv_cell(n > 0 ? u_num[q] * std::abs(stats[q].mean) : std::nan(""));
     s << "\n";
     first = last;
   }
@@ -648,6 +647,10 @@ EnsembleStatistics ensemble_statistics(const std::vector<double> &values)
   s.ci95 = gsl_cdf_tdist_Pinv(0.975, double(v.size() - 1)) * s.sd / std::sqrt(double(v.size()));
   return s;
 }
+
+std::string csv_cell(double v) { return std::isfinite(v) ? format_number(v) : ""; }
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 bool deck_declares(const Deck &deck, const std::string &key)
 {

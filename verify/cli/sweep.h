@@ -56,6 +56,8 @@
 // kind that refuses mpirun itself (compare) has its members refused there.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <limits>
 #include <string>
 #include <vector>
@@ -145,6 +147,11 @@ struct EnsembleStatistics
 };
 
 EnsembleStatistics ensemble_statistics(const std::vector<double> &values);
+
+/// A number as a CSV cell of the study tables: empty when not finite.
+std::string csv_cell(double v);
+/// A number for a JSON document: null when not finite (JSON has no NaN).
+nlohmann::json finite_or_null(double v);
 
 /// Runs (or resumes) the members of a plan in settings.out_dir.  Bad input
 /// (the base deck, a key, a directory holding something else) is a

@@ -140,10 +140,6 @@ TimeStepAnalysis analyse_time_step(const std::vector<double> &safety, const std:
 
 namespace
 {
-std::string cell(double v) { return std::isfinite(v) ? format_number(v) : ""; }
-
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
 /// Refuses what the study cannot measure, before any member runs.
 void check_options(const TimeStepStudyOptions &o, const std::vector<double> &safety)
 {
@@ -183,19 +179,19 @@ void write_study_files(const std::string &dir, const std::vector<TimeStepAnalysi
     for (std::size_t i = 0; i < a.safety.size(); ++i)
     {
       const EnsembleStatistics &s = a.level[i];
-      t << quantities()[q].name << "," << format_number(a.safety[i]) << "," << s.n << "," << cell(s.mean) << ","
-        << cell(s.sd) << "," << cell(s.se) << "," << cell(s.ci95) << ",";
+      t << quantities()[q].name << "," << format_number(a.safety[i]) << "," << s.n << "," << csv_cell(s.mean) << ","
+        << csv_cell(s.sd) << "," << csv_cell(s.se) << "," << csv_cell(s.ci95) << ",";
       if (i < a.change.size())
-        t << cell(a.change[i].difference.mean) << "," << cell(a.change[i].difference.ci95) << ","
+        t << csv_cell(a.change[i].difference.mean) << "," << csv_cell(a.change[i].difference.ci95) << ","
           << (a.change[i].resolved ? "resolved" : "not resolved");
       else
         t << ",,";
       t << ",";
       if (i < a.order.size() && a.order[i].resolved)
-        t << cell(a.order[i].order) << "," << cell(a.order[i].low) << "," << cell(a.order[i].high);
+        t << csv_cell(a.order[i].order) << "," << csv_cell(a.order[i].low) << "," << csv_cell(a.order[i].high);
       else
         t << ",,";
-      t << "," << cell(a.error_bound[i]) << "," << cell(a.error_bound[i] / std::abs(s.mean)) << "\n";
+      t << "," << csv_cell(a.error_bound[i]) << "," << csv_cell(a.error_bound[i] / std::abs(s.mean)) << "\n";
     }
   }
   write_atomically(dir + "/time_step_study.csv", t.str());
@@ -209,26 +205,26 @@ void write_study_files(const std::string &dir, const std::vector<TimeStepAnalysi
     {
       nlohmann::json l = {{"safety", a.safety[i]},
                           {"n", a.level[i].n},
-                          {"mean", number_or_null(a.level[i].mean)},
-                          {"se", number_or_null(a.level[i].se)},
-                          {"ci95", number_or_null(a.level[i].ci95)},
-                          {"u_num_bound", number_or_null(a.error_bound[i])},
-                          {"u_num_bound_relative", number_or_null(a.error_bound[i] / std::abs(a.level[i].mean))}};
+                          {"mean", finite_or_null(a.level[i].mean)},
+                          {"se", finite_or_null(a.level[i].se)},
+                          {"ci95", finite_or_null(a.level[i].ci95)},
+                          {"u_num_bound", finite_or_null(a.error_bound[i])},
+                          {"u_num_bound_relative", finite_or_null(a.error_bound[i] / std::abs(a.level[i].mean))}};
       if (i < a.change.size())
-        l["change_to_finer"] = {{"mean", number_or_null(a.change[i].difference.mean)},
-                                {"ci95", number_or_null(a.change[i].difference.ci95)},
+        l["change_to_finer"] = {{"mean", finite_or_null(a.change[i].difference.mean)},
+                                {"ci95", finite_or_null(a.change[i].difference.ci95)},
                                 {"verdict", a.change[i].resolved ? "resolved" : "not resolved"},
-                                {"bound", number_or_null(a.change[i].bound())}};
+                                {"bound", finite_or_null(a.change[i].bound())}};
       if (i < a.order.size())
         l["observed_order"] = a.order[i].resolved
                                 ? nlohmann::json{{"order", a.order[i].order},
-                                                 {"low", number_or_null(a.order[i].low)},
-                                                 {"high", number_or_null(a.order[i].high)}}
+                                                 {"low", finite_or_null(a.order[i].low)},
+                                                 {"high", finite_or_null(a.order[i].high)}}
                                 : nlohmann::json("not resolved");
       levels.push_back(l);
     }
     doc["quantities"][quantities()[q].name] = {{"levels", levels},
-                                               {"extrapolated", number_or_null(a.extrapolated)}};
+                                               {"extrapolated", finite_or_null(a.extrapolated)}};
   }
   doc["default_safety"] = default_safety;
   doc["method"] = "paired changes over common-random-number seeds; U_num(s) = 95 % bound on |q(finest) - q(s)| "
@@ -291,10 +287,10 @@ void print_table(std::ostream &out, const std::vector<TimeStepAnalysis> &analyse
     out << quantities()[q].name << "\n  safety  n  mean  u_seed(se)  change to finer [95 %]  verdict  U_num\n";
     for (std::size_t i = 0; i < a.safety.size(); ++i)
     {
-      out << "  " << format_number(a.safety[i]) << "  " << a.level[i].n << "  " << cell(a.level[i].mean) << "  "
-          << cell(a.level[i].se) << "  ";
+      out << "  " << format_number(a.safety[i]) << "  " << a.level[i].n << "  " << csv_cell(a.level[i].mean) << "  "
+          << csv_cell(a.level[i].se) << "  ";
       if (i < a.change.size())
-        out << cell(a.change[i].difference.mean) << " +- " << cell(a.change[i].difference.ci95) << "  "
+        out << csv_cell(a.change[i].difference.mean) << " +- " << csv_cell(a.change[i].difference.ci95) << "  "
             << (a.change[i].resolved ? "resolved" : "not resolved");
       else
         out << "-  -";

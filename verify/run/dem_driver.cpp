@@ -360,7 +360,7 @@ void check_resumable(const std::string &run_dir, const Deck &deck)
   // ... and with the files it read: a sample or particle file changed
   // between the pause and the resume would continue another run.
   const nlohmann::json recorded = doc.value("inputs", nlohmann::json::object());
-  const nlohmann::json now = hash_input_files(DeckRecord(deck).inputs);
+  const nlohmann::json now = hash_input_files(deck.input_files());
   for (const auto &[path, hash] : recorded.items())
     if (!now.contains(path) || now.at(path) != hash)
       throw DeckError(run_dir + ": the input file " + path + (now.contains(path) ? " changed" : " is gone") +
