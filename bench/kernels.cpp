@@ -162,10 +162,7 @@ BENCHMARK_CAPTURE(force_pass, modified_burgers, std::string("modified_burgers"))
   ->Unit(benchmark::kMicrosecond);
 BENCHMARK(integrate)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(rebuild)->Arg(6000)->Arg(60000)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(force_pass_packed, linear, std::string("linear"))
-  ->Arg(500)
-  ->Arg(6000)
-  ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(force_pass_packed, linear, std::string("linear"))->Arg(500)->Arg(6000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(force_pass_packed, burgers, std::string("burgers"))->Arg(6000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(force_pass_packed, modified_burgers, std::string("modified_burgers"))
   ->Arg(6000)

@@ -2,7 +2,7 @@
 #   git_sha.h         the current git SHA (suffix -dirty if tracked files are
 #                     modified), for provenance;
 #   sources_sha256.h  the SHA-256 of demvv's own sources (dem/, continuum/,
-#                     verify/: every .h, .cpp and .in file by its path and
+#                     app/, verify/, cli/: every .h, .cpp and .in file by its path and
 #                     contents; editors' hidden files left out), git or
 #                     not: it keys the sample cache, so a sample prepared
 #                     by another build is never served.
@@ -30,7 +30,7 @@ write_if_changed(${OUT}/git_sha.h
   "#pragma once\nnamespace build_info { inline constexpr const char *git_sha = \"${sha}\"; }\n")
 
 set(patterns "")
-foreach(dir dem continuum verify)
+foreach(dir dem continuum app verify cli)
   list(APPEND patterns ${SRC}/${dir}/*.h ${SRC}/${dir}/*.cpp ${SRC}/${dir}/*.in)
 endforeach()
 file(GLOB_RECURSE sources RELATIVE ${SRC} ${patterns})

@@ -109,20 +109,44 @@ void add_counters(void *mem, OdeStatistics &total)
 void require(int flag, const char *call)
 {
   if (flag < 0)
-    throw std::runtime_error(std::string("demvv bug: SUNDIALS ") + call + " failed: " +
-                             CVodeGetReturnFlagName(flag));
+    throw std::runtime_error(std::string("demvv bug: SUNDIALS ") + call + " failed: " + CVodeGetReturnFlagName(flag));
 }
 } // namespace
 
 // --- histories -------------------------------------------------------------
-// Fields: shape, rate, ramp time, amplitude, frequency, level.
-History History::constant_rate(double rate) { return {Shape::constant_rate, rate, 0, 0, 0, 0}; }
+History History::constant_rate(double rate)
+{
+  History h;
+  h.rate = rate;
+  return h;
+}
+
 History History::ramp_and_hold(double rate, double ramp_time)
 {
-  return {Shape::ramp_and_hold, rate, ramp_time, 0, 0, 0};
+  History h;
+  h.shape = Shape::ramp_and_hold;
+  h.rate = rate;
+  h.ramp_time = ramp_time;
+  return h;
 }
-History History::cyclic(double amplitude, double frequency) { return {Shape::cyclic, 0, 0, amplitude, frequency, 0}; }
-History History::step(double level) { return {Shape::step, 0, 0, 0, 0, level}; }
+
+History History::cyclic(double amplitude, double frequency)
+{
+  History h;
+  h.shape = Shape::cyclic;
+  h.amplitude = amplitude;
+  h.frequency = frequency;
+  return h;
+}
+
+History History::step(double level)
+{
+  History h;
+  h.shape = Shape::step;
+  h.level = level;
+  return h;
+}
+
 History History::general(std::function<double(double)> value, std::function<double(double, double)> rate,
                          std::vector<double> kinks, double largest_magnitude)
 {
@@ -256,7 +280,8 @@ std::vector<OdeState> BurgersOde::solve(const std::vector<double> &times, const 
 {
   std::vector<OdeState> out;
   out.reserve(times.size());
-  solve(times, tolerances, [&](const OdeState &s) { out.push_back(s); }, statistics);
+  solve(
+    times, tolerances, [&](const OdeState &s) { out.push_back(s); }, statistics);
   return out;
 }
 
@@ -305,7 +330,8 @@ void BurgersOde::solve(const std::vector<double> &times, const OdeTolerances &to
   // 6.4 cannot clear a stop time, so after the last kink it is put beyond
   // any output.)
   const std::vector<double> kinks = history_.kinks();
-  const auto piece_end = [&](double start) {
+  const auto piece_end = [&](double start)
+  {
     const auto next = std::find_if(kinks.begin(), kinks.end(), [&](double kink) { return kink > start; });
     return next == kinks.end() ? std::numeric_limits<double>::infinity() : *next;
   };
@@ -314,7 +340,8 @@ void BurgersOde::solve(const std::vector<double> &times, const OdeTolerances &to
     require(CVodeSetStopTime(mem, end), "CVodeSetStopTime");
   OdeStatistics counted;
   counted.absolute_tolerance = atol;
-  const auto integrate = [&](double tout, std::size_t k) {
+  const auto integrate = [&](double tout, std::size_t k)
+  {
     sunrealtype reached = 0;
     const int flag = CVode(mem, tout, y.get(), &reached, CV_NORMAL);
     if (flag < 0)
@@ -325,7 +352,8 @@ void BurgersOde::solve(const std::vector<double> &times, const OdeTolerances &to
     if (reached != tout)
       require(CVodeGetDky(mem, tout, 0, y.get()), "CVodeGetDky");
   };
-  const auto restart = [&]() {
+  const auto restart = [&]()
+  {
     // y holds the state at `end`, where the derivative of the history
     // jumps: restart the BDF history (which resets CVODE's counters too).
     add_counters(mem, counted);

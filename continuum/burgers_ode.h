@@ -109,7 +109,7 @@ struct OdeStatistics
   long rhs_evaluations = 0;
   long jacobian_evaluations = 0;
   long error_test_failures = 0;
-  long restarts = 0; ///< restarts at kinks of the history
+  long restarts = 0;             ///< restarts at kinks of the history
   double absolute_tolerance = 0; ///< on the displacements [m or -]
 };
 

@@ -58,12 +58,12 @@ PointState SolidStep::advance(const PointState &old, const Tensor3 &strain, cons
   PointState next;
   next.strain = strain;
   next.stress = stress(strain) + history(old, sources);
-  next.kelvin = deviatoric_.kelvin(deviator(old.kelvin), deviator(old.stress), deviator(next.stress),
-                                   deviator(sources.kelvin));
+  next.kelvin =
+    deviatoric_.kelvin(deviator(old.kelvin), deviator(old.stress), deviator(next.stress), deviator(sources.kelvin));
   if (volumetric_)
-    next.kelvin += volumetric_->kelvin(trace(old.kelvin), trace(old.stress) / 3, trace(next.stress) / 3,
-                                       trace(sources.kelvin)) /
-                   3 * identity;
+    next.kelvin +=
+      volumetric_->kelvin(trace(old.kelvin), trace(old.stress) / 3, trace(next.stress) / 3, trace(sources.kelvin)) / 3 *
+      identity;
   return next;
 }
 } // namespace continuum

@@ -50,8 +50,7 @@ public:
   T history(const T &total_old, const T &kelvin_old, const T &force_old, const T &kelvin_source,
             const T &dashpot_source) const
   {
-    return (-total_old + (1 - b_ / a_) * kelvin_old - d_ * force_old -
-            dt_ * (kelvin_source / a_ + dashpot_source)) /
+    return (-total_old + (1 - b_ / a_) * kelvin_old - d_ * force_old - dt_ * (kelvin_source / a_ + dashpot_source)) /
            c_;
   }
 
@@ -87,7 +86,7 @@ public:
   SolidStep(const BurgersSolid &solid, double dt);
 
   double shear_stiffness() const { return deviatoric_.stiffness(); } ///< 2 mu_alg [Pa]
-  double bulk_stiffness() const;                                      ///< kappa_alg [Pa]
+  double bulk_stiffness() const;                                     ///< kappa_alg [Pa]
   /// The algorithmic stress of a strain: 2 mu dev(eps) + kappa tr(eps) I [Pa].
   Tensor3 stress(const Tensor3 &strain) const;
   /// sigma^{n+1} - stress(eps^{n+1}): what the old state contributes [Pa].

@@ -2,16 +2,15 @@
 
 #include "continuum/viscoelastic_cylinder.h"
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/data_out_base.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -41,12 +40,14 @@ ParallelInfo parallel_info()
     static char *args[] = {name, nullptr};
     static char **argv = args;
     new Utilities::MPI::MPI_InitFinalize(argc, argv, 1);
-    std::atexit([] {
-      int finalised = 0;
-      MPI_Finalized(&finalised);
-      if (!finalised)
-        MPI_Finalize();
-    });
+    std::atexit(
+      []
+      {
+        int finalised = 0;
+        MPI_Finalized(&finalised);
+        if (!finalised)
+          MPI_Finalize();
+      });
   }
   return {Utilities::MPI::this_mpi_process(MPI_COMM_WORLD), Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)};
 }
@@ -66,11 +67,11 @@ public:
   void constrain(const Mapping<dim> & /*mapping*/, const DoFHandler<dim> &dof_handler, double time,
                  AffineConstraints<double> &c) const override
   {
-    const auto fix = [&](types::boundary_id id, unsigned int component, double value) {
+    const auto fix = [&](types::boundary_id id, unsigned int component, double value)
+    {
       ComponentMask mask(dim, false);
       mask.set(component, true);
-      VectorTools::interpolate_boundary_values(dof_handler, id, Functions::ConstantFunction<dim>(value, dim), c,
-                                               mask);
+      VectorTools::interpolate_boundary_values(dof_handler, id, Functions::ConstantFunction<dim>(value, dim), c, mask);
     };
     fix(boundary::symmetry_x, 0, 0);
     if (dim == 3)
@@ -131,9 +132,9 @@ class CompressionTestFor : public CompressionTest::Impl
 {
 public:
   explicit CompressionTestFor(const CylinderSpec &spec)
-    : spec_(spec), loading_(spec), cylinder_({spec.radius, spec.height}, spec.solid,
-                                             {spec.degree, spec.refinements, spec.solver_tolerance}, loading_,
-                                             MPI_COMM_WORLD)
+    : spec_(spec), loading_(spec),
+      cylinder_({spec.radius, spec.height}, spec.solid, {spec.degree, spec.refinements, spec.solver_tolerance},
+                loading_, MPI_COMM_WORLD)
   {
     // The quarter model carries a quarter of the force.
     quarters_ = dim == 3 ? 4 : 1;
@@ -156,7 +157,8 @@ public:
     report(0, on_step);
     if (paraview)
       write_frame(0);
-    const auto after_step = [&](unsigned int n) {
+    const auto after_step = [&](unsigned int n)
+    {
       report(n, on_step);
       if (paraview && (n == spec_.time_steps || (spec_.paraview_every > 0 && n % spec_.paraview_every == 0)))
         write_frame(n);

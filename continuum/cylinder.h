@@ -46,44 +46,44 @@ enum class Geometry
 
 struct CylinderSpec
 {
-  double radius = 0.01555;             ///< R [m]
-  double height = 0.0311;              ///< H [m]
-  BurgersSolid solid;                  ///< material
+  double radius = 0.01555; ///< R [m]
+  double height = 0.0311;  ///< H [m]
+  BurgersSolid solid;      ///< material
   Platens platens = Platens::frictionless;
-  double strain_rate = 0.005;          ///< [1/s], compression positive
-  double final_strain = 0.02;          ///< [-]
+  double strain_rate = 0.005; ///< [1/s], compression positive
+  double final_strain = 0.02; ///< [-]
   /// Prescribed axial strain at time t [-] (empty: strain_rate x t to the final strain).
   std::function<double(double)> axial_strain_history;
   /// Prescribed nominal axial stress at time t [Pa], compression positive (creep; overrides the strain).
   std::function<double(double)> axial_stress_history;
-  double duration = 0;                 ///< [s], with a history: the test ends there
-  unsigned int time_steps = 100;       ///< uniform steps to the final strain (or over the duration)
+  double duration = 0;           ///< [s], with a history: the test ends there
+  unsigned int time_steps = 100; ///< uniform steps to the final strain (or over the duration)
   Geometry geometry = Geometry::axisymmetric;
-  unsigned int degree = 2;             ///< Q_p
-  unsigned int refinements = 2;        ///< global refinements (coarse cells about R wide)
-  double solver_tolerance = 1e-12;     ///< relative CG residual
-  std::string paraview_directory;      ///< empty: no ParaView output
-  unsigned int paraview_every = 10;    ///< steps between ParaView frames (and the last step)
+  unsigned int degree = 2;          ///< Q_p
+  unsigned int refinements = 2;     ///< global refinements (coarse cells about R wide)
+  double solver_tolerance = 1e-12;  ///< relative CG residual
+  std::string paraview_directory;   ///< empty: no ParaView output
+  unsigned int paraview_every = 10; ///< steps between ParaView frames (and the last step)
 };
 
 struct CylinderStep
 {
   unsigned int step = 0;
-  double time = 0;              ///< [s]
-  double axial_strain = 0;      ///< compression positive [-]
-  double axial_stress = 0;      ///< nominal, compression positive [Pa]
-  double radial_strain = 0;     ///< -u_r/R at mid-height [-]
-  unsigned int iterations = 0;  ///< CG iterations of this step
+  double time = 0;             ///< [s]
+  double axial_strain = 0;     ///< compression positive [-]
+  double axial_stress = 0;     ///< nominal, compression positive [Pa]
+  double radial_strain = 0;    ///< -u_r/R at mid-height [-]
+  unsigned int iterations = 0; ///< CG iterations of this step
 };
 
 struct CylinderMesh
 {
   unsigned long cells = 0;
   unsigned long dofs = 0;
-  double cell_size = 0;      ///< (volume / cells)^(1/dim) [m]
-  double platen_area = 0;    ///< nominal platen area the stress refers to [m^2]
+  double cell_size = 0;        ///< (volume / cells)^(1/dim) [m]
+  double platen_area = 0;      ///< nominal platen area the stress refers to [m^2]
   double mesh_platen_area = 0; ///< the mesh's own top area (the quarter's x 4 in 3D) [m^2]
-  double time_step = 0;      ///< [s]
+  double time_step = 0;        ///< [s]
   unsigned int ranks = 1;
 };
 

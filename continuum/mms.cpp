@@ -211,7 +211,8 @@ public:
   Tensor<1, dim> body_force(const Point<dim> &x, double t) const
   {
     const double h = difference_step_;
-    const auto derivative = [&](unsigned int j) {
+    const auto derivative = [&](unsigned int j)
+    {
       Tensor<1, dim> e;
       e[j] = h;
       return (stress(x - 2 * e, t) - 8 * stress(x - e, t) + 8 * stress(x + e, t) - stress(x + 2 * e, t)) / (12 * h);
@@ -314,7 +315,8 @@ std::unique_ptr<Manufactured<2>> make_solution(const MmsSpec &s, std::integral_c
       std::make_unique<AxisymmetricWave>(3e-4, R, 1.1 / R, 1.3 / H, 0.9),
       std::make_unique<AxisymmetricWave>(2e-4, R, 2.1 / R, 0.7 / H, -0.3),
       std::array<TimeFunction, 3>{{quadratic(1.0, 0.5, T), quadratic(0.3, 0.4, T), quadratic(0.2, 0.6, T)}}, R);
-  const auto diagonal = [](double rr, double zz) {
+  const auto diagonal = [](double rr, double zz)
+  {
     Tensor<2, 2> G;
     G[0][0] = rr;
     G[1][1] = zz;
@@ -333,18 +335,19 @@ std::unique_ptr<Manufactured<3>> make_solution(const MmsSpec &s, std::integral_c
   const double R = s.radius, H = s.height, T = s.duration;
   if (s.variable == MmsVariable::space)
   {
-    const auto wave = [&](double A, double shift) {
+    const auto wave = [&](double A, double shift)
+    {
       const std::array<Tensor<1, 3>, 3> k = {{Tensor<1, 3>({1.3 / R, 0.6 / R, 0.8 / H}),
                                               Tensor<1, 3>({0.5 / R, 1.4 / R, 1.1 / H}),
                                               Tensor<1, 3>({0.9 / R, 0.7 / R, 1.9 / H})}};
-      return std::make_unique<CartesianWave>(A, R, k,
-                                             std::array<double, 3>{{0.3 + shift, -0.2 + shift, 0.7 + shift}});
+      return std::make_unique<CartesianWave>(A, R, k, std::array<double, 3>{{0.3 + shift, -0.2 + shift, 0.7 + shift}});
     };
     return std::make_unique<Manufactured<3>>(
       s.solid, wave(1e-3, 0), wave(3e-4, 0.5), wave(2e-4, -0.8),
       std::array<TimeFunction, 3>{{quadratic(1.0, 0.5, T), quadratic(0.3, 0.4, T), quadratic(0.2, 0.6, T)}}, R);
   }
-  const auto matrix = [](double a, double b, double c, double d) {
+  const auto matrix = [](double a, double b, double c, double d)
+  {
     Tensor<2, 3> G;
     G[0][0] = a;
     G[1][1] = b;
@@ -358,8 +361,8 @@ std::unique_ptr<Manufactured<3>> make_solution(const MmsSpec &s, std::integral_c
     s.solid, std::make_unique<Affine<3>>(matrix(0.4e-3, 0.3e-3, -1e-3, 0.2e-3)),
     std::make_unique<Affine<3>>(matrix(0.2e-3, -0.1e-3, -0.5e-3, 0.1e-3)),
     std::make_unique<Affine<3>>(matrix(-0.1e-3, 0.2e-3, 0.3e-3, -0.1e-3)),
-    std::array<TimeFunction, 3>{{transcendental(1.7, 0.3, 2.3, T), transcendental(1.1, 0.5, 1.3, T),
-                                 transcendental(2.1, -0.4, 0.7, T)}},
+    std::array<TimeFunction, 3>{
+      {transcendental(1.7, 0.3, 2.3, T), transcendental(1.1, 0.5, 1.3, T), transcendental(2.1, -0.4, 0.7, T)}},
     R);
 }
 
@@ -374,25 +377,27 @@ void measure(const ViscoelasticCylinder<dim> &cylinder, const Manufactured<dim> 
   const QGauss<dim> quadrature(degree + 2);
   TrilinosWrappers::MPI::Vector zero(cylinder.solution());
   zero = 0;
-  const auto norm = [&](const TrilinosWrappers::MPI::Vector &v, VectorTools::NormType type) {
+  const auto norm = [&](const TrilinosWrappers::MPI::Vector &v, VectorTools::NormType type)
+  {
     Vector<float> cellwise(cylinder.triangulation().n_active_cells());
-    VectorTools::integrate_difference(cylinder.mapping(), cylinder.dof_handler(), v, exact, cellwise, quadrature,
-                                      type, &weight);
+    VectorTools::integrate_difference(cylinder.mapping(), cylinder.dof_handler(), v, exact, cellwise, quadrature, type,
+                                      &weight);
     return VectorTools::compute_global_error(cylinder.triangulation(), cellwise, type);
   };
   level.displacement_l2 = norm(cylinder.solution(), VectorTools::L2_norm) / norm(zero, VectorTools::L2_norm);
-  level.displacement_h1 =
-    norm(cylinder.solution(), VectorTools::H1_seminorm) / norm(zero, VectorTools::H1_seminorm);
+  level.displacement_h1 = norm(cylinder.solution(), VectorTools::H1_seminorm) / norm(zero, VectorTools::H1_seminorm);
 
   double sums[4] = {0, 0, 0, 0}; // stress error, stress, Kelvin error, Kelvin
-  cylinder.for_each_point([&](const Point<dim> &x, double w, const PointState &s) {
-    const Tensor3 stress = m.stress(x, t), kelvin = m.kelvin(x, t);
-    const Tensor3 stress_error = s.stress - stress, kelvin_error = s.kelvin - kelvin;
-    sums[0] += stress_error * stress_error * w;
-    sums[1] += stress * stress * w;
-    sums[2] += kelvin_error * kelvin_error * w;
-    sums[3] += kelvin * kelvin * w;
-  });
+  cylinder.for_each_point(
+    [&](const Point<dim> &x, double w, const PointState &s)
+    {
+      const Tensor3 stress = m.stress(x, t), kelvin = m.kelvin(x, t);
+      const Tensor3 stress_error = s.stress - stress, kelvin_error = s.kelvin - kelvin;
+      sums[0] += stress_error * stress_error * w;
+      sums[1] += stress * stress * w;
+      sums[2] += kelvin_error * kelvin_error * w;
+      sums[3] += kelvin * kelvin * w;
+    });
   Utilities::MPI::sum(ArrayView<const double>(sums, 4), cylinder.communicator(), ArrayView<double>(sums, 4));
   level.stress_l2 = std::sqrt(sums[0] / sums[1]);
   level.kelvin_l2 = std::sqrt(sums[2] / sums[3]);

@@ -51,8 +51,8 @@ struct MmsSpec
   double radius = 0.01555;                         ///< [m]
   double height = 0.0311;                          ///< [m]
   double duration = 2;                             ///< manufactured time span T [s]
-  unsigned int time_steps = 2;   ///< steps at level 0 (space: every level)
-  unsigned int refinements = 0;  ///< mesh of the time study
+  unsigned int time_steps = 2;                     ///< steps at level 0 (space: every level)
+  unsigned int refinements = 0;                    ///< mesh of the time study
   double solver_tolerance = 1e-12;
 };
 

@@ -11,8 +11,7 @@ namespace continuum
 class NumericalFailure : public std::runtime_error
 {
 public:
-  NumericalFailure(double time, long step, const std::string &what)
-    : std::runtime_error(what), time_(time), step_(step)
+  NumericalFailure(double time, long step, const std::string &what) : std::runtime_error(what), time_(time), step_(step)
   {
   }
   double time() const { return time_; } ///< simulated time of the failure [s]

@@ -198,8 +198,8 @@ void ViscoelasticCylinder<dim>::shape_strains(const FEValues<dim> &fe_values, un
 {
   const Point<dim> &x = fe_values.quadrature_point(q);
   for (unsigned int i = 0; i < fe_.n_dofs_per_cell(); ++i)
-    strains[i] = strain3d<dim>(fe_values[displacement_].symmetric_gradient(i, q),
-                               fe_values[displacement_].value(i, q), x);
+    strains[i] =
+      strain3d<dim>(fe_values[displacement_].symmetric_gradient(i, q), fe_values[displacement_].value(i, q), x);
 }
 
 template <int dim>
@@ -286,9 +286,9 @@ void ViscoelasticCylinder<dim>::assemble_rhs(double old_time, double new_time)
           rhs(i) += (fe_values[displacement_].value(i, q) * b - strains[i] * history) * w;
       }
       cell->get_dof_indices(dofs);
-      const bool inhomogeneous = std::any_of(dofs.begin(), dofs.end(), [&](types::global_dof_index i) {
-        return constraints_.is_inhomogeneously_constrained(i);
-      });
+      const bool inhomogeneous =
+        std::any_of(dofs.begin(), dofs.end(),
+                    [&](types::global_dof_index i) { return constraints_.is_inhomogeneously_constrained(i); });
       if (inhomogeneous)
       {
         // Prescribed displacements enter the right-hand side through the
@@ -332,9 +332,8 @@ void ViscoelasticCylinder<dim>::solve_timestep(long step)
   {
     throw NumericalFailure(time_, step,
                            "the conjugate-gradient solver did not reach the relative residual " +
-                             std::to_string(discretisation_.solver_tolerance) + " in " +
-                             std::to_string(e.last_step) + " iterations (residual " +
-                             std::to_string(e.last_residual) + ")");
+                             std::to_string(discretisation_.solver_tolerance) + " in " + std::to_string(e.last_step) +
+                             " iterations (residual " + std::to_string(e.last_residual) + ")");
   }
   constraints_.distribute(owned_solution_);
   solution_ = owned_solution_;
@@ -359,8 +358,9 @@ void ViscoelasticCylinder<dim>::update_quadrature_point_history(double old_time,
         PointState &s = state(cell, q);
         s = step_->advance(s, strain3d<dim>(gradients[q], values[q], x), sources(x, old_time, new_time));
         if (!finite(s.stress))
-          throw NumericalFailure(new_time, step, "a stress is not finite at x = " + std::to_string(x[0]) + ", " +
-                                                   std::to_string(x[dim - 1]) + " m");
+          throw NumericalFailure(new_time, step,
+                                 "a stress is not finite at x = " + std::to_string(x[0]) + ", " +
+                                   std::to_string(x[dim - 1]) + " m");
       }
     }
 }
@@ -404,8 +404,7 @@ void ViscoelasticCylinder<dim>::accept_trial(double dt)
 // @sect3{Measurements}
 
 template <int dim>
-PointState &ViscoelasticCylinder<dim>::state(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                                             unsigned int q)
+PointState &ViscoelasticCylinder<dim>::state(const typename DoFHandler<dim>::active_cell_iterator &cell, unsigned int q)
 {
   return states_[cell->active_cell_index() * quadrature_.size() + q];
 }
@@ -432,10 +431,12 @@ double ViscoelasticCylinder<dim>::cell_size() const
 template <int dim>
 double ViscoelasticCylinder<dim>::platen_force() const
 {
-  return platen_reaction([this](const auto &cell, const FEValues<dim> &, std::vector<Tensor3> &stresses) {
-    for (unsigned int q = 0; q < quadrature_.size(); ++q)
-      stresses[q] = state(cell, q).stress;
-  });
+  return platen_reaction(
+    [this](const auto &cell, const FEValues<dim> &, std::vector<Tensor3> &stresses)
+    {
+      for (unsigned int q = 0; q < quadrature_.size(); ++q)
+        stresses[q] = state(cell, q).stress;
+    });
 }
 
 template <int dim>
@@ -444,16 +445,19 @@ double ViscoelasticCylinder<dim>::trial_platen_force() const
   std::vector<SymmetricTensor<2, dim>> gradients(quadrature_.size());
   std::vector<Tensor<1, dim>> values(quadrature_.size());
   const double old_time = time_, new_time = time_ + assembled_dt_;
-  return platen_reaction([&](const auto &cell, const FEValues<dim> &fe_values, std::vector<Tensor3> &stresses) {
-    fe_values[displacement_].get_function_symmetric_gradients(solution_, gradients);
-    fe_values[displacement_].get_function_values(solution_, values);
-    for (unsigned int q = 0; q < quadrature_.size(); ++q)
+  return platen_reaction(
+    [&](const auto &cell, const FEValues<dim> &fe_values, std::vector<Tensor3> &stresses)
     {
-      const Point<dim> &x = fe_values.quadrature_point(q);
-      stresses[q] =
-        step_->advance(state(cell, q), strain3d<dim>(gradients[q], values[q], x), sources(x, old_time, new_time)).stress;
-    }
-  });
+      fe_values[displacement_].get_function_symmetric_gradients(solution_, gradients);
+      fe_values[displacement_].get_function_values(solution_, values);
+      for (unsigned int q = 0; q < quadrature_.size(); ++q)
+      {
+        const Point<dim> &x = fe_values.quadrature_point(q);
+        stresses[q] =
+          step_->advance(state(cell, q), strain3d<dim>(gradients[q], values[q], x), sources(x, old_time, new_time))
+            .stress;
+      }
+    });
 }
 
 template <int dim>
@@ -547,8 +551,7 @@ std::string ViscoelasticCylinder<dim>::output_results(const std::string &directo
 {
   // Cell averages of the stress (compression positive axial stress,
   // tension positive components) and of the Kelvin strain's magnitude.
-  Vector<float> axial(triangulation_.n_active_cells()), radial(axial), hoop(axial), kelvin(axial),
-    ranks(axial);
+  Vector<float> axial(triangulation_.n_active_cells()), radial(axial), hoop(axial), kelvin(axial), ranks(axial);
   for (const auto &cell : dof_handler_.active_cell_iterators())
     if (cell->is_locally_owned())
     {

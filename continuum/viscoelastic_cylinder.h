@@ -62,9 +62,9 @@ namespace boundary
 {
 /// The axis r = 0 (axisymmetric) or the symmetry plane x = 0 (3D quarter).
 constexpr dealii::types::boundary_id symmetry_x = 0;
-constexpr dealii::types::boundary_id bottom = 1;  ///< z = 0, the fixed platen
-constexpr dealii::types::boundary_id top = 2;     ///< z = H, the moving platen
-constexpr dealii::types::boundary_id lateral = 3; ///< r = R, free surface
+constexpr dealii::types::boundary_id bottom = 1;     ///< z = 0, the fixed platen
+constexpr dealii::types::boundary_id top = 2;        ///< z = H, the moving platen
+constexpr dealii::types::boundary_id lateral = 3;    ///< r = R, free surface
 constexpr dealii::types::boundary_id symmetry_y = 4; ///< y = 0 (3D quarter only)
 } // namespace boundary
 
@@ -99,8 +99,8 @@ public:
   virtual ~Loading() = default;
   /// Adds the Dirichlet conditions at time t.  Which degrees of freedom are
   /// constrained must not depend on t (only the values may).
-  virtual void constrain(const dealii::Mapping<dim> &mapping, const dealii::DoFHandler<dim> &dof_handler,
-                         double time, dealii::AffineConstraints<double> &constraints) const = 0;
+  virtual void constrain(const dealii::Mapping<dim> &mapping, const dealii::DoFHandler<dim> &dof_handler, double time,
+                         dealii::AffineConstraints<double> &constraints) const = 0;
   /// Body force b [N/m^3] at x, t.
   virtual dealii::Tensor<1, dim> body_force(const dealii::Point<dim> & /*x*/, double /*time*/) const { return {}; }
   /// Sources of the Kelvin and Maxwell-dashpot equations [1/s] at x, t.
@@ -204,7 +204,7 @@ private:
   dealii::TrilinosWrappers::PreconditionAMG preconditioner_;
   dealii::TrilinosWrappers::MPI::Vector system_rhs_, owned_solution_;
   dealii::TrilinosWrappers::MPI::Vector accepted_solution_, previous_solution_; ///< the last two accepted steps
-  dealii::TrilinosWrappers::MPI::Vector solution_; ///< ghosted
+  dealii::TrilinosWrappers::MPI::Vector solution_;                              ///< ghosted
 
   std::unique_ptr<SolidStep> step_; ///< the update for the current dt
   double assembled_dt_ = 0;

@@ -96,6 +96,6 @@ struct BrokenBond
 {
   std::size_t contact = 0; ///< entry of the contact table
   BreakMode mode = BreakMode::none;
-  BreakForces trial;       ///< the law's forces before the break
+  BreakForces trial; ///< the law's forces before the break
 };
 } // namespace dem

@@ -22,12 +22,12 @@ struct GslRng
 };
 } // namespace
 
-BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particles,
-                               const BondSettings &s)
+BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particles, const BondSettings &s)
 {
   BondReport report;
   GslRng random(s.seed);
-  const auto draw = [&](double mean) {
+  const auto draw = [&](double mean)
+  {
     if (s.cov <= 0)
       return mean;
     const double value = mean + gsl_ran_gaussian(random.rng.get(), s.cov * mean);
@@ -44,10 +44,9 @@ BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particl
   for (std::size_t c = 0; c < table.size(); ++c)
   {
     Contact &k = table[c];
-    const double gap = (particles.position[k.second] - particles.position[k.first]).norm() -
-                       particles.radius[k.first] - particles.radius[k.second];
-    const double tolerance =
-      s.touch_tolerance * std::min(particles.radius[k.first], particles.radius[k.second]);
+    const double gap = (particles.position[k.second] - particles.position[k.first]).norm() - particles.radius[k.first] -
+                       particles.radius[k.second];
+    const double tolerance = s.touch_tolerance * std::min(particles.radius[k.first], particles.radius[k.second]);
     if (gap > tolerance)
       continue;
     k.bonded = true;
@@ -82,8 +81,8 @@ BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particl
   return report;
 }
 
-void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Index j,
-               double normal_strength, double shear_strength)
+void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Index j, double normal_strength,
+               double shear_strength)
 {
   Contact &c = table.ensure(i, j, particles);
   c.bonded = true;

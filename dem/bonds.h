@@ -22,12 +22,12 @@ namespace dem
 {
 struct BondSettings
 {
-  double normal_strength = 0;     ///< N, mean phi_n
-  double shear_strength = 0;      ///< N, mean phi_s
-  double cov = 0;                 ///< -, coefficient of variation of both strengths
-  double floor_fraction = 0.01;   ///< -, lowest strength as a fraction of its mean
-  double removed_fraction = 0;    ///< -, fraction of bonds removed after bonding
-  double touch_tolerance = 1e-6;  ///< -, gap allowed, relative to the smaller radius
+  double normal_strength = 0;    ///< N, mean phi_n
+  double shear_strength = 0;     ///< N, mean phi_s
+  double cov = 0;                ///< -, coefficient of variation of both strengths
+  double floor_fraction = 0.01;  ///< -, lowest strength as a fraction of its mean
+  double removed_fraction = 0;   ///< -, fraction of bonds removed after bonding
+  double touch_tolerance = 1e-6; ///< -, gap allowed, relative to the smaller radius
   std::uint64_t seed = 1;
 };
 
@@ -41,8 +41,7 @@ struct BondReport
 };
 
 /// Bonds every touching pair of the table (build the table first).
-BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particles,
-                               const BondSettings &settings);
+BondReport bond_touching_pairs(ContactTable &table, const ParticleStore &particles, const BondSettings &settings);
 
 /// Multiplies the strengths of every intact bond (rate dependence, eq. 7.23).
 void scale_bond_strengths(ContactTable &table, double factor);
@@ -52,6 +51,6 @@ void scale_bond_strengths(ContactTable &table, double factor);
 void set_break_displacement(ContactTable &table, const ParticleStore &particles, double delta_c);
 
 /// Bonds one pair with the given strengths, adding it to the table if needed.
-void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Index j,
-               double normal_strength, double shear_strength);
+void bond_pair(ContactTable &table, const ParticleStore &particles, Index i, Index j, double normal_strength,
+               double shear_strength);
 } // namespace dem

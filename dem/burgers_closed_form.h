@@ -36,13 +36,9 @@ struct BurgersConstants
   /// p1, p2 of the force equation f + p1 f' + p2 f'' = q1 u' + q2 u'' (eq. 7.14).
   double p1() const
   {
-    return kelvin_viscosity / kelvin_stiffness +
-           maxwell_viscosity * (1.0 / maxwell_stiffness + 1.0 / kelvin_stiffness);
+    return kelvin_viscosity / kelvin_stiffness + maxwell_viscosity * (1.0 / maxwell_stiffness + 1.0 / kelvin_stiffness);
   }
-  double p2() const
-  {
-    return kelvin_viscosity * maxwell_viscosity / (maxwell_stiffness * kelvin_stiffness);
-  }
+  double p2() const { return kelvin_viscosity * maxwell_viscosity / (maxwell_stiffness * kelvin_stiffness); }
 
   /// The roots lambda_1 > lambda_2 of eq. 7.19 [1/s] (both negative).
   double lambda1() const { return (-p1() + std::sqrt(p1() * p1() - 4 * p2())) / (2 * p2()); }

@@ -38,18 +38,15 @@ struct ContactParams
 
 /// Two stiffnesses in series, k_A k_B / (k_A + k_B) (eq. 3.17-3.18); zero if
 /// either is zero (a frictionless, shear-free platen has ks = 0).
-inline double in_series(double a, double b)
-{
-  return (a > 0 && b > 0) ? a * b / (a + b) : 0.0;
-}
+inline double in_series(double a, double b) { return (a > 0 && b > 0) ? a * b / (a + b) : 0.0; }
 
 /// PFC3D contact bond (thesis §3.4.2): strengths are forces.  Whether a
 /// contact's bond holds is a flag of the contact (`bonded`, contacts.h),
 /// kept beside the pair's other small fields where it costs no padding.
 struct ContactBond
 {
-  double normal_strength = 0; ///< N, tensile strength phi_n
-  double shear_strength = 0;  ///< N, shear strength phi_s
+  double normal_strength = 0;                                      ///< N, tensile strength phi_n
+  double shear_strength = 0;                                       ///< N, shear strength phi_s
   double break_distance = std::numeric_limits<double>::infinity(); ///< m, centre distance that breaks it (appendix A)
 };
 
@@ -159,8 +156,8 @@ struct ContactGeometry
 /// is needed: over a run both errors are second order (check V04 measures
 /// them).  A first-order turn would shrink the part of v normal
 /// to phi by |phi|^2/2 per step, a first-order error over a run.
-DEM_HOT_INLINE Vec3 rotate_with_contact_plane(const Vec3 &v, const Vec3 &old_normal,
-                                              const Vec3 &new_normal, double twist_angle)
+DEM_HOT_INLINE Vec3 rotate_with_contact_plane(const Vec3 &v, const Vec3 &old_normal, const Vec3 &new_normal,
+                                              double twist_angle)
 {
   // The twist acts about the mean normal: the symmetric choice keeps the
   // error of a step third order in its angle.

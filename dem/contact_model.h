@@ -36,8 +36,8 @@ namespace dem
 {
 /// Stability row terms of a ball-ball contact (stability.h) whose arms are
 /// at most fi R_i and fj R_j.
-DEM_HOT_INLINE StabilityTerms contact_stability_terms(const ParticleStore &p, Index i, Index j, double kn,
-                                                     double ks, double fi, double fj)
+DEM_HOT_INLINE StabilityTerms contact_stability_terms(const ParticleStore &p, Index i, Index j, double kn, double ks,
+                                                      double fi, double fj)
 {
   const double sbi = fi * p.sqrt_shear_mobility[i], sbj = fj * p.sqrt_shear_mobility[j];
   const double sqrt_ww = p.sqrt_inv_mass[i] * p.sqrt_inv_mass[j], sqrt_bb = sbi * sbj;
@@ -192,8 +192,8 @@ public:
     {
       const ContactState &s = table[c].state;
       if (s.touching())
-        e += law_.stored_energy(table.params(table[c]), s.normal_force, s.shear_force,
-                                history_of(table.law_states(), c));
+        e +=
+          law_.stored_energy(table.params(table[c]), s.normal_force, s.shear_force, history_of(table.law_states(), c));
     }
     return e;
   }
@@ -245,11 +245,8 @@ private:
     // In compression the arms are at most the radii and the precomputed
     // terms hold; a bonded pair in tension has longer arms.
     const StabilityTerms terms = g.overlap < 0 ? tension_terms(p, k, pair) : k.stability;
-    return {{r.force.x(), r.force.y(), r.force.z()},
-            {lever.x(), lever.y(), lever.z()},
-            g.overlap,
-            terms.first,
-            terms.second};
+    return {
+      {r.force.x(), r.force.y(), r.force.z()}, {lever.x(), lever.y(), lever.z()}, g.overlap, terms.first, terms.second};
   }
 
   /// Stability row terms of a touching contact in tension (arms longer

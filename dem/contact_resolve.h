@@ -76,7 +76,8 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   double fn = law.normal_force(params, g.overlap, history, dt);
   shear = law.shear_force(params, shear, shear_increment, history, dt);
 
-  const auto limit_by_friction = [&](double normal_force) {
+  const auto limit_by_friction = [&](double normal_force)
+  {
     const double limit = params.friction * std::max(normal_force, 0.0);
     const double magnitude = shear.norm();
     if (magnitude > limit)

@@ -10,8 +10,7 @@ namespace dem
 {
 ContactParams ContactTable::pair_params(const ParticleStore &p, Index i, Index j)
 {
-  return {in_series(p.kn[i], p.kn[j]), in_series(p.ks[i], p.ks[j]),
-          std::min(p.friction[i], p.friction[j])};
+  return {in_series(p.kn[i], p.kn[j]), in_series(p.ks[i], p.ks[j]), std::min(p.friction[i], p.friction[j])};
 }
 
 namespace
@@ -80,13 +79,15 @@ void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleSt
   // behind what it has still to read.
   const auto key = [](const Contact &c) { return Pair{c.first, c.second}; };
   std::size_t kept = 0, fresh = 0, old = 0;
-  const auto keep = [&](std::size_t k) {
+  const auto keep = [&](std::size_t k)
+  {
     contacts_[kept] = contacts_[k];
     if (law_slots_)
       law_states_[kept] = law_states_[k];
     ++kept;
   };
-  const auto keep_or_retire_below = [&](const Pair *bound) {
+  const auto keep_or_retire_below = [&](const Pair *bound)
+  {
     for (; old < contacts_.size() && (!bound || key(contacts_[old]) < *bound); ++old)
     {
       const Contact &c = contacts_[old];
@@ -176,7 +177,9 @@ Contact &ContactTable::ensure(Index i, Index j, const ParticleStore &particles)
     std::swap(i, j);
   const Pair pair{i, j};
   auto it = std::lower_bound(contacts_.begin(), contacts_.end(), pair,
-                             [](const Contact &c, const Pair &p) { return Pair{c.first, c.second} < p; });
+                             [](const Contact &c, const Pair &p) {
+                               return Pair{c.first, c.second} < p;
+                             });
   if (it == contacts_.end() || it->first != i || it->second != j)
   {
     Contact c;
@@ -216,7 +219,9 @@ const Contact *ContactTable::find(Index i, Index j) const
     std::swap(i, j);
   const Pair pair{i, j};
   auto it = std::lower_bound(contacts_.begin(), contacts_.end(), pair,
-                             [](const Contact &c, const Pair &p) { return Pair{c.first, c.second} < p; });
+                             [](const Contact &c, const Pair &p) {
+                               return Pair{c.first, c.second} < p;
+                             });
   return (it != contacts_.end() && it->first == i && it->second == j) ? &*it : nullptr;
 }
 

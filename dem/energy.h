@@ -16,14 +16,14 @@ namespace dem
 {
 struct EnergyLedger
 {
-  double kinetic = 0;        ///< J, translational + rotational, at the force time
-  double strain = 0;         ///< J, stored in ball-ball and ball-wall contacts
-  double friction = 0;       ///< J, dissipated by Coulomb slip (cumulative)
-  double damping = 0;        ///< J, dissipated by local damping (cumulative)
-  double bond_released = 0;  ///< J, released when bonds broke (cumulative)
-  double boundary_work = 0;  ///< J, done by walls and held balls (cumulative)
-  double body_work = 0;      ///< J, done by gravity (cumulative)
-  double initial = 0;        ///< J, kinetic + strain at the first step
+  double kinetic = 0;       ///< J, translational + rotational, at the force time
+  double strain = 0;        ///< J, stored in ball-ball and ball-wall contacts
+  double friction = 0;      ///< J, dissipated by Coulomb slip (cumulative)
+  double damping = 0;       ///< J, dissipated by local damping (cumulative)
+  double bond_released = 0; ///< J, released when bonds broke (cumulative)
+  double boundary_work = 0; ///< J, done by walls and held balls (cumulative)
+  double body_work = 0;     ///< J, done by gravity (cumulative)
+  double initial = 0;       ///< J, kinetic + strain at the first step
 
   double supplied() const { return initial + boundary_work + body_work; }
   double accounted() const { return kinetic + strain + friction + damping + bond_released; }

@@ -99,7 +99,8 @@ struct BurgersCoefficients
 template <class T>
 double burgers_energy(const BurgersConstants &k, const T &force, const T &kelvin)
 {
-  const auto square = [](const auto &v) {
+  const auto square = [](const auto &v)
+  {
     if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>)
       return v * v;
     else
@@ -133,14 +134,14 @@ struct BurgersContactConstants
 /// names of `state_fields`.
 struct BurgersHistory
 {
-  double overlap = 0;        ///< m, U at the last update (reference of the increment)
-  double normal_force = 0;   ///< N, applied normal force of the element
-  double normal_kelvin = 0;  ///< m, Kelvin displacement of the normal element
+  double overlap = 0;               ///< m, U at the last update (reference of the increment)
+  double normal_force = 0;          ///< N, applied normal force of the element
+  double normal_kelvin = 0;         ///< m, Kelvin displacement of the normal element
   Vec3 shear_kelvin = Vec3::Zero(); ///< m, Kelvin displacement of the shear element (force sense)
 
-  static constexpr std::array<std::string_view, 6> state_fields = {{
-    "reference_overlap_m", "element_normal_force_n", "normal_kelvin_m",
-    "shear_kelvin_x_m",    "shear_kelvin_y_m",       "shear_kelvin_z_m"}};
+  static constexpr std::array<std::string_view, 6> state_fields = {{"reference_overlap_m", "element_normal_force_n",
+                                                                    "normal_kelvin_m", "shear_kelvin_x_m",
+                                                                    "shear_kelvin_y_m", "shear_kelvin_z_m"}};
   static_assert(state_fields.size() <= LawState::capacity, "a Burger's history must fit a LawState slot");
 
   static BurgersHistory load(const LawState &s)
@@ -150,8 +151,8 @@ struct BurgersHistory
   }
   static void store(const BurgersHistory &h, LawState &s)
   {
-    s.value = {{h.overlap, h.normal_force, h.normal_kelvin, h.shear_kelvin.x(), h.shear_kelvin.y(),
-                h.shear_kelvin.z()}};
+    s.value = {
+      {h.overlap, h.normal_force, h.normal_kelvin, h.shear_kelvin.x(), h.shear_kelvin.y(), h.shear_kelvin.z()}};
   }
 };
 
@@ -176,7 +177,8 @@ public:
     std::vector<LawConstant> c = {
       {"normal maxwell stiffness", 0.5e6, "N/m",
        "Burger's K_0 (K_m) of the normal element (tension only for modified_burgers), a contact property "
-       "(Table 7.2: 0.5 MN/m).", RateScaled::stiffness},
+       "(Table 7.2: 0.5 MN/m).",
+       RateScaled::stiffness},
       {"normal maxwell viscosity", 0.5e6, "N s/m",
        "Burger's C_inf (C_m) of the normal element (tension only for modified_burgers) (Table 7.2: 0.5 MN s/m).",
        RateScaled::viscosity},
@@ -231,8 +233,8 @@ public:
     return normal_step(dt).force(overlap - h.overlap, h.normal_kelvin, h.normal_force);
   }
 
-  Vec3 shear_force(const ContactParams & /*p*/, const Vec3 &rotated_force, const Vec3 &shear_increment,
-                   History &h, double dt) const
+  Vec3 shear_force(const ContactParams & /*p*/, const Vec3 &rotated_force, const Vec3 &shear_increment, History &h,
+                   double dt) const
   {
     return shear_step(dt).force(Vec3(-shear_increment), h.shear_kelvin, rotated_force);
   }

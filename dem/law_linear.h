@@ -42,24 +42,22 @@ public:
   static void store(const History & /*h*/, LawState & /*s*/) {}
 
   /// Normal force from the current overlap (eq. 3.2).
-  double normal_force(const ContactParams &p, double overlap, History & /*h*/,
-                      double /*dt*/) const
+  double normal_force(const ContactParams &p, double overlap, History & /*h*/, double /*dt*/) const
   {
     return p.kn * overlap;
   }
 
   /// New shear force from the rotated old one and the shear displacement
   /// increment of the step (eq. 3.3-3.4).
-  Vec3 shear_force(const ContactParams &p, const Vec3 &rotated_force,
-                   const Vec3 &shear_increment, History & /*h*/, double /*dt*/) const
+  Vec3 shear_force(const ContactParams &p, const Vec3 &rotated_force, const Vec3 &shear_increment, History & /*h*/,
+                   double /*dt*/) const
   {
     return rotated_force - p.ks * shear_increment;
   }
 
   /// Nothing to precompute per step, no history to turn or to advance.
   void prepare(double /*dt*/) {}
-  void rotate_history(History & /*h*/, const Vec3 & /*old_normal*/, const Vec3 & /*new_normal*/,
-                      double /*twist*/) const
+  void rotate_history(History & /*h*/, const Vec3 & /*old_normal*/, const Vec3 & /*new_normal*/, double /*twist*/) const
   {
   }
   void commit(History & /*h*/, double /*overlap*/, double /*normal_force*/, const Vec3 & /*shear_before*/,

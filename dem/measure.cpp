@@ -26,13 +26,12 @@ double radial_distance(const Vec3 &x, const Vec3 &axis_point)
 }
 } // namespace
 
-double porosity(const ParticleStore &particles, const ContactTable &contacts,
-                const MeasurementSphere &sphere)
+double porosity(const ParticleStore &particles, const ContactTable &contacts, const MeasurementSphere &sphere)
 {
   double solid = 0;
   for (Index p = 0; p < particles.size(); ++p)
-    solid += sphere_intersection_volume(particles.radius[p], sphere.radius,
-                                        (particles.position[p] - sphere.centre).norm());
+    solid +=
+      sphere_intersection_volume(particles.radius[p], sphere.radius, (particles.position[p] - sphere.centre).norm());
   for (const Contact &c : contacts.entries())
   {
     if (!c.state.touching() || c.state.overlap <= 0)
@@ -51,9 +50,7 @@ double porosity(const ParticleStore &particles, const ContactTable &contacts,
 double coordination_number(const ParticleStore &particles, const ContactTable &contacts,
                            const MeasurementSphere &sphere)
 {
-  const auto inside = [&](Index p) {
-    return (particles.position[p] - sphere.centre).norm() < sphere.radius;
-  };
+  const auto inside = [&](Index p) { return (particles.position[p] - sphere.centre).norm() < sphere.radius; };
   std::size_t balls = 0, ends = 0;
   for (Index p = 0; p < particles.size(); ++p)
     balls += inside(p) ? 1 : 0;
@@ -127,10 +124,7 @@ Tensor3 average_stress(const Simulation &sim, double volume)
   return 0.5 * (sum + sum.transpose()) / volume;
 }
 
-double mean_stress(const Simulation &sim, double volume)
-{
-  return average_stress(sim, volume).trace() / 3.0;
-}
+double mean_stress(const Simulation &sim, double volume) { return average_stress(sim, volume).trace() / 3.0; }
 
 Tensor3 fabric_tensor(const ParticleStore &particles, const ContactTable &contacts)
 {
@@ -163,8 +157,8 @@ std::vector<int> contacts_per_ball(const Simulation &sim)
   return count;
 }
 
-RadialGauges::RadialGauges(const ParticleStore &particles, const Vec3 &axis_point, double z_mid,
-                           double height, double thickness)
+RadialGauges::RadialGauges(const ParticleStore &particles, const Vec3 &axis_point, double z_mid, double height,
+                           double thickness)
   : axis_point_(axis_point)
 {
   double outer = 0;
@@ -189,8 +183,7 @@ double RadialGauges::radial_strain(const ParticleStore &particles) const
     return 0.0;
   double sum = 0;
   for (std::size_t k = 0; k < members_.size(); ++k)
-    sum -= (radial_distance(particles.position[members_[k]], axis_point_) - initial_radius_[k]) /
-           initial_radius_[k];
+    sum -= (radial_distance(particles.position[members_[k]], axis_point_) - initial_radius_[k]) / initial_radius_[k];
   return sum / static_cast<double>(members_.size());
 }
 } // namespace dem

@@ -40,8 +40,7 @@ struct MeasurementSphere
 };
 
 /// Porosity inside a measurement sphere, overlaps corrected (eq. 5.2-5.3).
-double porosity(const ParticleStore &particles, const ContactTable &contacts,
-                const MeasurementSphere &sphere);
+double porosity(const ParticleStore &particles, const ContactTable &contacts, const MeasurementSphere &sphere);
 
 /// Mean number of touching ball-ball contacts of the balls whose centres lie
 /// in the sphere (eq. 5.4); 0 if none.
@@ -86,8 +85,7 @@ public:
   /// Selects the balls within one diameter of the outer radius whose
   /// centres lie in the central band |z - z_mid| <= thickness * height / 2
   /// (axis along z through axis_point).
-  RadialGauges(const ParticleStore &particles, const Vec3 &axis_point, double z_mid,
-               double height, double thickness);
+  RadialGauges(const ParticleStore &particles, const Vec3 &axis_point, double z_mid, double height, double thickness);
 
   /// Mean -(r - r0)/r0 over the gauges (compression positive).
   double radial_strain(const ParticleStore &particles) const;

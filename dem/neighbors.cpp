@@ -63,7 +63,8 @@ void NeighborList::rebuild(const ParticleStore &particles)
       dims[k] = static_cast<long>(along(k));
   }
   const long cells = dims[0] * dims[1] * dims[2];
-  const auto coord = [&](const Vec3 &x, int k) {
+  const auto coord = [&](const Vec3 &x, int k)
+  {
     const double c = (x[k] - lo[k]) / h; // >= 0, or NaN
     return c < double(dims[k] - 1) ? static_cast<long>(c) : dims[k] - 1;
   };

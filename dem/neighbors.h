@@ -31,10 +31,7 @@ public:
   void rebuild(const ParticleStore &particles);
 
   /// True when ball p at x has moved more than skin/2 since the last build.
-  bool moved_too_far(Index p, const Vec3 &x) const
-  {
-    return (x - reference_[p]).squaredNorm() > quarter_skin_sq_;
-  }
+  bool moved_too_far(Index p, const Vec3 &x) const { return (x - reference_[p]).squaredNorm() > quarter_skin_sq_; }
 
   /// True when the list cannot be used at all (never built, or the particle
   /// count changed).  Whoever changes radii must ask for a rebuild

@@ -35,7 +35,8 @@ void ParticleStore::reserve(std::size_t n)
 {
   for (auto *v : {&position, &velocity, &spin, &force, &torque})
     v->reserve(n);
-  for (auto *v : {&radius, &density, &mass, &inertia, &inv_mass, &inv_inertia, &inv_radius, &sqrt_inv_mass, &sqrt_shear_mobility, &kn, &ks, &friction})
+  for (auto *v : {&radius, &density, &mass, &inertia, &inv_mass, &inv_inertia, &inv_radius, &sqrt_inv_mass,
+                  &sqrt_shear_mobility, &kn, &ks, &friction})
     v->reserve(n);
   motion.reserve(n);
 }
@@ -51,8 +52,7 @@ void ParticleStore::set_radius(Index p, double r)
 
 void ParticleStore::set_motion(Index p, bool hold_velocity, bool hold_spin)
 {
-  motion[p] = static_cast<std::uint8_t>((hold_velocity ? velocity_held : 0) |
-                                        (hold_spin ? spin_held : 0));
+  motion[p] = static_cast<std::uint8_t>((hold_velocity ? velocity_held : 0) | (hold_spin ? spin_held : 0));
   inv_mass[p] = hold_velocity || mass[p] <= 0 ? 0.0 : 1.0 / mass[p];
   inv_inertia[p] = hold_spin || inertia[p] <= 0 ? 0.0 : 1.0 / inertia[p];
   sqrt_inv_mass[p] = std::sqrt(inv_mass[p]);

@@ -23,16 +23,16 @@ namespace dem
 /// One ball as a user describes it; ParticleStore::add derives the rest.
 struct BallSpec
 {
-  Vec3 position = Vec3::Zero();      ///< m
-  double radius = 0;                 ///< m
-  double density = 2650;             ///< kg/m^3
-  Vec3 velocity = Vec3::Zero();      ///< m/s
-  Vec3 spin = Vec3::Zero();          ///< rad/s
-  double kn = 0;                     ///< N/m, ball normal stiffness
-  double ks = 0;                     ///< N/m, ball shear stiffness
-  double friction = 0;               ///< -, ball friction coefficient
-  bool hold_velocity = false;        ///< translation prescribed
-  bool hold_spin = false;            ///< rotation prescribed
+  Vec3 position = Vec3::Zero(); ///< m
+  double radius = 0;            ///< m
+  double density = 2650;        ///< kg/m^3
+  Vec3 velocity = Vec3::Zero(); ///< m/s
+  Vec3 spin = Vec3::Zero();     ///< rad/s
+  double kn = 0;                ///< N/m, ball normal stiffness
+  double ks = 0;                ///< N/m, ball shear stiffness
+  double friction = 0;          ///< -, ball friction coefficient
+  bool hold_velocity = false;   ///< translation prescribed
+  bool hold_spin = false;       ///< rotation prescribed
 };
 
 enum Motion : std::uint8_t
@@ -60,23 +60,23 @@ public:
   double max_radius() const;
   double min_radius() const;
 
-  std::vector<Vec3> position;   // m
-  std::vector<Vec3> velocity;   // m/s, at t - dt/2
-  std::vector<Vec3> spin;       // rad/s, at t - dt/2
-  std::vector<Vec3> force;      // N, resultant at t (contacts + walls + gravity)
-  std::vector<Vec3> torque;     // N m, resultant at t
-  std::vector<double> radius;   // m
-  std::vector<double> density;  // kg/m^3
-  std::vector<double> mass;     // kg
-  std::vector<double> inertia;  // kg m^2
-  std::vector<double> inv_mass;    // 1/kg, zero when the velocity is held
-  std::vector<double> inv_inertia; // 1/(kg m^2), zero when the spin is held
-  std::vector<double> inv_radius;        // 1/m
-  std::vector<double> sqrt_inv_mass;     // 1/sqrt(kg), for the stability bound
+  std::vector<Vec3> position;              // m
+  std::vector<Vec3> velocity;              // m/s, at t - dt/2
+  std::vector<Vec3> spin;                  // rad/s, at t - dt/2
+  std::vector<Vec3> force;                 // N, resultant at t (contacts + walls + gravity)
+  std::vector<Vec3> torque;                // N m, resultant at t
+  std::vector<double> radius;              // m
+  std::vector<double> density;             // kg/m^3
+  std::vector<double> mass;                // kg
+  std::vector<double> inertia;             // kg m^2
+  std::vector<double> inv_mass;            // 1/kg, zero when the velocity is held
+  std::vector<double> inv_inertia;         // 1/(kg m^2), zero when the spin is held
+  std::vector<double> inv_radius;          // 1/m
+  std::vector<double> sqrt_inv_mass;       // 1/sqrt(kg), for the stability bound
   std::vector<double> sqrt_shear_mobility; // sqrt(1/m + R^2/I), for the stability bound
-  std::vector<double> kn;       // N/m
-  std::vector<double> ks;       // N/m
-  std::vector<double> friction; // -
+  std::vector<double> kn;                  // N/m
+  std::vector<double> ks;                  // N/m
+  std::vector<double> friction;            // -
   std::vector<std::uint8_t> motion;
 };
 } // namespace dem

@@ -35,10 +35,7 @@ std::string fmt(double v)
 class Preparation
 {
 public:
-  Preparation(const PackingSettings &s, const std::function<void(const std::string &)> &log)
-    : s_(s), log_(log)
-  {
-  }
+  Preparation(const PackingSettings &s, const std::function<void(const std::string &)> &log) : s_(s), log_(log) {}
 
   PreparedSample run();
 
@@ -127,7 +124,8 @@ void Preparation::generate()
   // Random sequential addition with a hash grid of cell 2 r0: a candidate
   // only needs the 27 cells around it.
   const double h = 2 * r0;
-  const auto key = [h](const Vec3 &x) {
+  const auto key = [h](const Vec3 &x)
+  {
     const auto c = [h](double v) { return static_cast<long long>(std::floor(v / h)) & 0x1fffff; };
     return (c(x.x()) << 42) | (c(x.y()) << 21) | c(x.z());
   };
@@ -140,11 +138,12 @@ void Preparation::generate()
   {
     if (++attempts > budget)
       throw PackingError("particles", "could not place " + std::to_string(size_.particles) +
-                                          " balls at half radius without overlap in the cell (placed " +
-                                          std::to_string(centres.size()) + ")");
+                                        " balls at half radius without overlap in the cell (placed " +
+                                        std::to_string(centres.size()) + ")");
     const double rho = rho_max * std::sqrt(gsl_rng_uniform(rng.get()));
     const double angle = 2 * pi * gsl_rng_uniform(rng.get());
-    const Vec3 x(rho * std::cos(angle), rho * std::sin(angle), r0 + (size_.height - 2 * r0) * gsl_rng_uniform(rng.get()));
+    const Vec3 x(rho * std::cos(angle), rho * std::sin(angle),
+                 r0 + (size_.height - 2 * r0) * gsl_rng_uniform(rng.get()));
     bool clear = true;
     for (int dx = -1; dx <= 1 && clear; ++dx)
       for (int dy = -1; dy <= 1 && clear; ++dy)
@@ -165,7 +164,8 @@ void Preparation::generate()
   // which the force and integration loops (and every later test on this
   // sample) read far faster than a random order.
   const double cell = 2 * s_.radius;
-  const auto cell_of = [cell](const Vec3 &x) {
+  const auto cell_of = [cell](const Vec3 &x)
+  {
     return std::array<long, 3>{static_cast<long>(std::floor(x.z() / cell)), static_cast<long>(std::floor(x.y() / cell)),
                                static_cast<long>(std::floor(x.x() / cell))};
   };
@@ -283,7 +283,8 @@ StageReport Preparation::equilibrate(const std::string &name, bool servo, double
   // for five checks in a row, then settles to the equilibrium ratio with the
   // servo still on (near the target the walls hardly move): a frictionless
   // packing held by fixed walls can creep, rearrange and unjam.
-  const std::function<void(const CellStress &, long)> progress = [&](const CellStress &cs, long cycles) {
+  const std::function<void(const CellStress &, long)> progress = [&](const CellStress &cs, long cycles)
+  {
     if (cycles % 20000 == 0)
       say(name + ": cycle " + std::to_string(cycles) + ", wall stresses bottom " + fmt(cs.bottom) + ", top " +
           fmt(cs.top) + ", lateral " + fmt(cs.lateral) + " Pa, solid fraction " + fmt(solid_fraction()));
@@ -394,7 +395,8 @@ std::vector<Index> Preparation::short_of_contacts() const
   }
   for (WallIndex w = 0; w < sim_->walls().size(); ++w)
     for (Index b = 0; b < p.size(); ++b)
-      if (sim_->walls()[w].enabled && sim_->walls().clearance(w, p.position[b]) <= p.radius[b] * (1 + s_.bonds.touch_tolerance))
+      if (sim_->walls()[w].enabled &&
+          sim_->walls().clearance(w, p.position[b]) <= p.radius[b] * (1 + s_.bonds.touch_tolerance))
         ++count[b];
   std::vector<Index> out;
   for (Index b = 0; b < p.size(); ++b)

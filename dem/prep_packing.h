@@ -45,25 +45,25 @@ namespace dem
 {
 struct PackingSettings
 {
-  long particles = 0;                ///< N; 0: from eq. 5.1 with the cell diameter and height
-  double radius = 0.885e-3;          ///< m, final radius
-  double diameter = 0;               ///< m, cell diameter when particles == 0
-  double height = 0;                 ///< m, cell height when particles == 0
-  double aspect = 1.0;               ///< H / D when particles > 0
+  long particles = 0;                  ///< N; 0: from eq. 5.1 with the cell diameter and height
+  double radius = 0.885e-3;            ///< m, final radius
+  double diameter = 0;                 ///< m, cell diameter when particles == 0
+  double height = 0;                   ///< m, cell height when particles == 0
+  double aspect = 1.0;                 ///< H / D when particles > 0
   double target_solid_fraction = 0.64; ///< 1 - n of eq. 5.1 (the servo stage sets the final density)
-  BallSpec ball;                     ///< density, kn, ks, friction of every ball
-  WallProps walls;                   ///< kn, ks of the cell walls (frictionless during preparation)
+  BallSpec ball;                       ///< density, kn, ks, friction of every ball
+  WallProps walls;                     ///< kn, ks of the cell walls (frictionless during preparation)
   std::uint64_t seed = 1;
-  int growth_stages = 40;            ///< radius growth from R/2 to R
-  long growth_cycles = 100;          ///< relaxation cycles per growth stage
-  double servo_stress = 1e5;         ///< Pa, 0: no servo stage (thesis §6.1: 0.1 MPa)
-  double stress_target = 1e3;        ///< Pa, mean stress after radius reduction
-  double equilibrium_ratio = 1e-3;   ///< unbalanced-force ratio that counts as equilibrium
-  long max_cycles = 200000;          ///< cycle budget of each equilibrium stage
-  int min_contacts = 4;              ///< contacts every ball should have before bonding
-  double max_expansion = 0.01;       ///< largest growth of a ball with too few contacts
+  int growth_stages = 40;          ///< radius growth from R/2 to R
+  long growth_cycles = 100;        ///< relaxation cycles per growth stage
+  double servo_stress = 1e5;       ///< Pa, 0: no servo stage (thesis §6.1: 0.1 MPa)
+  double stress_target = 1e3;      ///< Pa, mean stress after radius reduction
+  double equilibrium_ratio = 1e-3; ///< unbalanced-force ratio that counts as equilibrium
+  long max_cycles = 200000;        ///< cycle budget of each equilibrium stage
+  int min_contacts = 4;            ///< contacts every ball should have before bonding
+  double max_expansion = 0.01;     ///< largest growth of a ball with too few contacts
   BondSettings bonds;
-  bool bond = true;                  ///< install bonds (stage 6)
+  bool bond = true; ///< install bonds (stage 6)
   double local_damping = 0.7;
 };
 
@@ -73,10 +73,10 @@ struct StageReport
   std::string name;
   long cycles = 0;
   bool converged = false;
-  double mean_stress = 0;            ///< Pa
+  double mean_stress = 0; ///< Pa
   double unbalanced_ratio = 0;
-  double solid_fraction = 0;         ///< balls / cell volume
-  double coordination = 0;           ///< ball-ball, 2 Nc / N
+  double solid_fraction = 0; ///< balls / cell volume
+  double coordination = 0;   ///< ball-ball, 2 Nc / N
 };
 
 /// One step of the radius reduction (thesis Fig. 5.5): the radii's relative
@@ -92,25 +92,25 @@ struct PackingReport
   long particles = 0;
   double cell_diameter = 0, cell_height = 0; ///< m, final cell
   std::vector<StageReport> stages;
-  double radius_change = 0;          ///< relative change of the radii in stage 4 (negative: reduced)
+  double radius_change = 0;                          ///< relative change of the radii in stage 4 (negative: reduced)
   std::vector<RadiusReductionStep> radius_reduction; ///< stage 4 step by step, from no change
-  double solid_fraction_cost = 0;    ///< solid fraction lost by stage 4
-  double stress_before_bonding = 0;  ///< Pa, mean stress after stages 4-5
-  long rattlers_before = 0;          ///< balls below min_contacts before the expansion stage
-  long rattlers_after = 0;           ///< ... at bonding (0 if the target was met)
-  double coordination_before_bonding = 0; ///< ball-ball, force-carrying
-  double largest_expansion = 0;      ///< relative growth given to a ball in stage 5
-  double solid_fraction = 0;         ///< final, whole cell
+  double solid_fraction_cost = 0;                    ///< solid fraction lost by stage 4
+  double stress_before_bonding = 0;                  ///< Pa, mean stress after stages 4-5
+  long rattlers_before = 0;                          ///< balls below min_contacts before the expansion stage
+  long rattlers_after = 0;                           ///< ... at bonding (0 if the target was met)
+  double coordination_before_bonding = 0;            ///< ball-ball, force-carrying
+  double largest_expansion = 0;                      ///< relative growth given to a ball in stage 5
+  double solid_fraction = 0;                         ///< final, whole cell
   double sphere_porosity[2] = {0, 0};
   double sphere_coordination[2] = {0, 0};
-  double coordination = 0;           ///< final, ball-ball
-  int fewest_contacts = 0;           ///< final, ball-ball and ball-wall, before the lateral wall goes
-  double fabric_deviator_norm = 0;   ///< |F - I/3| (Frobenius) of the final fabric tensor
+  double coordination = 0;         ///< final, ball-ball
+  int fewest_contacts = 0;         ///< final, ball-ball and ball-wall, before the lateral wall goes
+  double fabric_deviator_norm = 0; ///< |F - I/3| (Frobenius) of the final fabric tensor
   double fabric_eigenvalues[3] = {0, 0, 0};
   BondReport bonds;
   double mean_contact_force_before = 0; ///< N, before bonding
-  double locked_in_mean_force = 0;   ///< N, mean |F| after settling without the lateral wall
-  double locked_in_max_force = 0;    ///< N
+  double locked_in_mean_force = 0;      ///< N, mean |F| after settling without the lateral wall
+  double locked_in_max_force = 0;       ///< N
   double wall_seconds = 0;
 };
 
@@ -118,8 +118,7 @@ struct PackingReport
 class PackingError : public std::runtime_error
 {
 public:
-  PackingError(std::string setting, std::string what)
-    : std::runtime_error(std::move(what)), setting(std::move(setting))
+  PackingError(std::string setting, std::string what) : std::runtime_error(std::move(what)), setting(std::move(setting))
   {
   }
   std::string setting; ///< which setting is at fault

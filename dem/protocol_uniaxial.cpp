@@ -5,8 +5,8 @@
 
 namespace dem
 {
-UniaxialCompression::UniaxialCompression(const Simulation &sim, WallIndex bottom, WallIndex top,
-                                         double area, const UniaxialSettings &settings)
+UniaxialCompression::UniaxialCompression(const Simulation &sim, WallIndex bottom, WallIndex top, double area,
+                                         const UniaxialSettings &settings)
   : bottom_(bottom), top_(top), area_(area), height0_(0), speed_(0), start_time_(sim.time()), settings_(settings)
 {
   height0_ = separation(sim);
@@ -41,8 +41,8 @@ double UniaxialCompression::time_left(const Simulation &sim) const
   // The approach covers speed t^2 / (2 ramp) during the ramp and
   // speed (t - ramp / 2) after it.
   const double distance = settings_.final_strain * height0_, ramp = settings_.ramp_time;
-  const double total = distance / speed_ >= 0.5 * ramp ? distance / speed_ + 0.5 * ramp
-                                                        : std::sqrt(2 * ramp * distance / speed_);
+  const double total =
+    distance / speed_ >= 0.5 * ramp ? distance / speed_ + 0.5 * ramp : std::sqrt(2 * ramp * distance / speed_);
   return std::max(0.0, total - (sim.time() - start_time_));
 }
 

@@ -26,17 +26,17 @@ namespace dem
 {
 struct UniaxialSettings
 {
-  double strain_rate = 0;   ///< 1/s, > 0 compressive (used when platen_speed == 0)
-  double platen_speed = 0;  ///< m/s, relative approach speed of the platens
-  double ramp_time = 0;     ///< s, linear ramp of the speed from zero
-  double final_strain = 0;  ///< -, the test stops there
+  double strain_rate = 0;  ///< 1/s, > 0 compressive (used when platen_speed == 0)
+  double platen_speed = 0; ///< m/s, relative approach speed of the platens
+  double ramp_time = 0;    ///< s, linear ramp of the speed from zero
+  double final_strain = 0; ///< -, the test stops there
   bool both_platens = false;
   /// Prescribed axial strain at time t after the start (empty: constant speed) [-].
   std::function<double(double)> strain_schedule;
   /// Prescribed nominal axial stress at time t (servo on the top platen) [Pa].
   std::function<double(double)> stress_schedule;
-  double duration = 0;       ///< s, a scheduled test ends there
-  ServoSettings servo;       ///< creep: the platen servo's relaxation factor and speed limit
+  double duration = 0; ///< s, a scheduled test ends there
+  ServoSettings servo; ///< creep: the platen servo's relaxation factor and speed limit
 };
 
 class UniaxialCompression : public StepHooks

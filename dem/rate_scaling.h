@@ -21,10 +21,10 @@ namespace dem
 {
 struct RateLaw
 {
-  double exponent = 0.29;          ///< n
-  double arrhenius = 13.4e3;       ///< k, K
+  double exponent = 0.29;             ///< n
+  double arrhenius = 13.4e3;          ///< k, K
   double reference_temperature = 283; ///< T_0, K
-  double reference_rate = 0.1;     ///< rate_0, 1/s
+  double reference_rate = 0.1;        ///< rate_0, 1/s
 
   /// rate_T of eq. 4.3 [1/s] for a strain rate [1/s] at temperature T [K].
   double compensated_rate(double rate, double temperature) const

@@ -19,20 +19,14 @@ bool parse_lattice(std::string_view name, Lattice &out)
   return true;
 }
 
-std::string_view lattice_name(Lattice l)
-{
-  return l == Lattice::simple_cubic ? "sc" : "fcc";
-}
+std::string_view lattice_name(Lattice l) { return l == Lattice::simple_cubic ? "sc" : "fcc"; }
 
 double lattice_porosity(Lattice l)
 {
   return l == Lattice::simple_cubic ? 1.0 - pi / 6.0 : 1.0 - pi / (3.0 * std::sqrt(2.0));
 }
 
-int lattice_coordination(Lattice l)
-{
-  return l == Lattice::simple_cubic ? 6 : 12;
-}
+int lattice_coordination(Lattice l) { return l == Lattice::simple_cubic ? 6 : 12; }
 
 std::vector<Vec3> lattice_box(Lattice l, double r, int nx, int ny, int nz)
 {

@@ -15,7 +15,7 @@ namespace
 struct WallTally
 {
   int contacts = 0;
-  double stiffness = 0; ///< N/m, sum over the contacts
+  double stiffness = 0;    ///< N/m, sum over the contacts
   double normal_force = 0; ///< N, sum over the contacts
 };
 
@@ -77,8 +77,8 @@ double servo_speed(const Simulation &sim, WallIndex w, const WallTally &t, doubl
   // packing.  The error is limited to the target itself, so that one step
   // moves a wall by at most the overlap that carries the target stress.
   const double covering = area / (4 * r * r);
-  const double stiffness = t.contacts > 0 ? t.stiffness / t.contacts
-                                          : in_series(p.kn.empty() ? 0.0 : p.kn[0], sim.walls()[w].props.kn);
+  const double stiffness =
+    t.contacts > 0 ? t.stiffness / t.contacts : in_series(p.kn.empty() ? 0.0 : p.kn[0], sim.walls()[w].props.kn);
   const double gain = s.relaxation * area / (stiffness * std::max<double>(t.contacts, covering) * dt);
   const double limit = s.target_stress > 0 ? s.target_stress : std::abs(stress);
   const double error = std::clamp(stress - s.target_stress, -limit, limit);
@@ -106,8 +106,8 @@ CellStress servo_cell(Simulation &sim, const Specimen &cell, const ServoSettings
   for (int k = 0; k < 2; ++k)
   {
     Wall &wall = sim.walls()[k == 0 ? cell.bottom : cell.top];
-    const double speed = servo_speed(sim, k == 0 ? cell.bottom : cell.top, t[k], platen_area,
-                                     k == 0 ? s.bottom : s.top, settings);
+    const double speed =
+      servo_speed(sim, k == 0 ? cell.bottom : cell.top, t[k], platen_area, k == 0 ? s.bottom : s.top, settings);
     wall.velocity = -speed * wall.direction;
   }
   side.radial_velocity = servo_speed(sim, cell.lateral, t[2], side_area, s.lateral, settings);

@@ -24,8 +24,8 @@ class Simulation;
 
 struct ServoSettings
 {
-  double target_stress = 0;  ///< Pa, compression positive
-  double relaxation = 0.5;   ///< alpha of eq. 3.15, in (0, 1)
+  double target_stress = 0;        ///< Pa, compression positive
+  double relaxation = 0.5;         ///< alpha of eq. 3.15, in (0, 1)
   double max_step_fraction = 0.01; ///< largest wall move per step, fraction of the smallest ball radius
   /// Integral action of a platen servo that tracks a moving target (creep):
   /// each step adds this fraction of the proportional speed to a held

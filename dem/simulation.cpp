@@ -13,8 +13,7 @@ NumericalFault::NumericalFault(long step_, double time_, Index particle_, const 
 
 Simulation::Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<ContactModel> model,
                        SimulationSettings settings)
-  : particles_(std::move(particles)), walls_(std::move(walls)), model_(std::move(model)),
-    settings_(settings)
+  : particles_(std::move(particles)), walls_(std::move(walls)), model_(std::move(model)), settings_(settings)
 {
   const auto n = static_cast<std::size_t>(particles_.size());
   contacts_.keeps_law_states(model_->keeps_law_state());
@@ -134,7 +133,7 @@ double estimated_memory_bytes(double particles, int walls)
 {
   constexpr double pairs_per_ball = 8;
   const double ball = 5 * sizeof(Vec3) + 12 * sizeof(double) + 1 // ParticleStore
-                      + 2 * sizeof(double) + sizeof(BallEnergy)   // step scratch, energy ledger
+                      + 2 * sizeof(double) + sizeof(BallEnergy)  // step scratch, energy ledger
                       + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
                       + 2 * sizeof(EntryIndex)                   // contact table adjacency
                       + double(walls) * sizeof(std::int32_t) + sizeof(WallContact);

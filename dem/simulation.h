@@ -39,12 +39,12 @@ namespace dem
 {
 struct SimulationSettings
 {
-  Vec3 gravity = Vec3::Zero();     ///< m/s^2
-  double local_damping = 0.7;      ///< -, PFC local damping coefficient alpha
-  double time_step_safety = 0.8;   ///< -, fraction of the critical step bound
-  double fixed_time_step = 0;      ///< s, > 0 fixes the step
-  bool allow_unstable_step = false;///< run a fixed step above the bound anyway
-  double skin_fraction = 0.25;     ///< -, neighbour skin / largest radius
+  Vec3 gravity = Vec3::Zero();      ///< m/s^2
+  double local_damping = 0.7;       ///< -, PFC local damping coefficient alpha
+  double time_step_safety = 0.8;    ///< -, fraction of the critical step bound
+  double fixed_time_step = 0;       ///< s, > 0 fixes the step
+  bool allow_unstable_step = false; ///< run a fixed step above the bound anyway
+  double skin_fraction = 0.25;      ///< -, neighbour skin / largest radius
 };
 
 struct BondBreak
@@ -52,8 +52,8 @@ struct BondBreak
   double time = 0; ///< s
   Index first = 0, second = 0;
   BreakMode mode = BreakMode::none;
-  double normal_force = 0;  ///< N, trial normal force at the break
-  double shear_force = 0;   ///< N, trial shear force magnitude at the break
+  double normal_force = 0; ///< N, trial normal force at the break
+  double shear_force = 0;  ///< N, trial shear force magnitude at the break
 };
 
 /// A numerical fault: NaN, runaway motion, unstable fixed step.
@@ -77,7 +77,7 @@ struct BallEnergy
 /// exactly as if it had never stopped.
 struct SimulationClock
 {
-  double time = 0;           ///< s
+  double time = 0; ///< s
   long steps = 0;
   double last_time_step = 0; ///< s, the step that produced the current positions
   std::vector<BallEnergy> ball_energy;
@@ -153,8 +153,7 @@ public:
 class Simulation
 {
 public:
-  Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<ContactModel> model,
-             SimulationSettings settings);
+  Simulation(ParticleStore particles, WallSet walls, std::unique_ptr<ContactModel> model, SimulationSettings settings);
   /// Continues a saved run (see Snapshot); the contacts' law states only
   /// when the snapshot's law is the model's.
   Simulation(Snapshot snapshot, std::unique_ptr<ContactModel> model, SimulationSettings settings);
@@ -249,9 +248,9 @@ private:
   bool forces_current_ = false;
 
   // Per-ball scratch, sized once: no allocation inside the step.
-  std::vector<double> row_bound_;  ///< 1/s^2, stability row bound of the contacts
-  double lone_bound_max_ = 0;      ///< 1/s^2, largest row bound of one contact with a ball's own stiffness
-  std::vector<double> wall_power_; ///< W, sum over walls of F_wall->ball . v_wall
+  std::vector<double> row_bound_;       ///< 1/s^2, stability row bound of the contacts
+  double lone_bound_max_ = 0;           ///< 1/s^2, largest row bound of one contact with a ball's own stiffness
+  std::vector<double> wall_power_;      ///< W, sum over walls of F_wall->ball . v_wall
   std::vector<WallIndex> active_walls_; ///< enabled walls, refreshed each step
 
   std::vector<BallEnergy> ball_energy_;

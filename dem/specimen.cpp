@@ -30,9 +30,8 @@ void add_cell_walls(Specimen &s, double diameter, double height, const WallProps
   s.height = height;
 }
 
-Specimen lattice_specimen(Lattice lattice, double radius, double diameter, double height,
-                          const BallSpec &ball, const WallProps &platen, const WallProps &lateral,
-                          bool with_lateral)
+Specimen lattice_specimen(Lattice lattice, double radius, double diameter, double height, const BallSpec &ball,
+                          const WallProps &platen, const WallProps &lateral, bool with_lateral)
 {
   const LatticeCylinder cyl = lattice_cylinder(lattice, radius, diameter, height);
   Specimen s;

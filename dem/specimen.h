@@ -36,7 +36,6 @@ void add_cell_walls(Specimen &s, double diameter, double height, const WallProps
 /// A lattice cylinder of balls with the properties of `ball` (position and
 /// radius ignored), platens with `platen` properties, and a lateral wall with
 /// `lateral` properties if `with_lateral`.
-Specimen lattice_specimen(Lattice lattice, double radius, double diameter, double height,
-                          const BallSpec &ball, const WallProps &platen, const WallProps &lateral,
-                          bool with_lateral);
+Specimen lattice_specimen(Lattice lattice, double radius, double diameter, double height, const BallSpec &ball,
+                          const WallProps &platen, const WallProps &lateral, bool with_lateral);
 } // namespace dem

@@ -31,9 +31,8 @@ Specimen bench_lattice_specimen(Lattice lattice, double particles)
   const double d = std::cbrt(particles * 4.0 / 3.0 * pi * r * r * r / fill * 4 / pi);
   // Only the centres are counted while searching, so that a large specimen
   // is built once.
-  const auto count = [&](double scale) {
-    return static_cast<double>(lattice_cylinder(lattice, r, d * scale, d * scale).centres.size());
-  };
+  const auto count = [&](double scale)
+  { return static_cast<double>(lattice_cylinder(lattice, r, d * scale, d * scale).centres.size()); };
   double best_scale = 1, best = count(1);
   for (double scale = 0.9; scale <= 1.2; scale += 0.005)
   {
@@ -71,7 +70,8 @@ BenchTiming time_compression(Simulation &sim, WallIndex bottom, WallIndex top, d
     const auto start = std::chrono::steady_clock::now();
     for (long k = 0; k < steps; ++k)
       sim.step(test);
-    out.seconds = std::min(out.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    out.seconds =
+      std::min(out.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   for (const Contact &c : sim.contacts().entries())
     out.touching += c.state.touching() ? 1 : 0;

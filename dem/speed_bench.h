@@ -31,15 +31,14 @@ Specimen bench_lattice_specimen(Lattice lattice, double particles);
 
 struct BenchTiming
 {
-  double seconds = 0;        ///< s, the fastest of the timed runs
-  std::size_t touching = 0;  ///< contacts carrying force at the end
+  double seconds = 0;       ///< s, the fastest of the timed runs
+  std::size_t touching = 0; ///< contacts carrying force at the end
 };
 
 /// Bonds every touching pair of `sim` (unbreakable bonds), then compresses
 /// the specimen between walls `bottom` and `top` (cross-section `area`
 /// [m^2]) and times `steps` steps `repeat` times.
-BenchTiming time_compression(Simulation &sim, WallIndex bottom, WallIndex top, double area, long steps,
-                             int repeat);
+BenchTiming time_compression(Simulation &sim, WallIndex bottom, WallIndex top, double area, long steps, int repeat);
 
 /// Peak resident memory of this process so far [bytes] (getrusage).
 double peak_resident_bytes();

@@ -39,8 +39,7 @@ namespace dem
 {
 /// Row term of ball A for one contact (see header note), 1/s^2.
 /// sqrt_ww = sqrt(w_A w_B), sqrt_bb = sqrt(b_A b_B).
-inline double stability_row_term(double kn, double ks, double w_self, double b_self, double sqrt_ww,
-                                 double sqrt_bb)
+inline double stability_row_term(double kn, double ks, double w_self, double b_self, double sqrt_ww, double sqrt_bb)
 {
   return std::max(kn * w_self, ks * b_self) + std::max(kn * sqrt_ww, ks * sqrt_bb);
 }
@@ -54,16 +53,10 @@ inline double shear_mobility(double inv_mass, double inv_inertia, double arm)
 /// Factor f with b(a) <= f^2 b(R) for an arm a (given 1/R), b(R) = 1/m + R^2/I: the arm
 /// is at most R in compression, and b(a) <= (a/R)^2 b(R) beyond.  With
 /// b(R) and its square root stored per ball, a contact needs no root.
-inline double arm_factor(double arm, double inv_radius)
-{
-  return std::max(1.0, arm * inv_radius);
-}
+inline double arm_factor(double arm, double inv_radius) { return std::max(1.0, arm * inv_radius); }
 
 /// The step 2/sqrt(bound); infinite for a ball without contacts.
-inline double critical_step(double row_bound)
-{
-  return row_bound > 0 ? 2.0 / std::sqrt(row_bound) : infinity;
-}
+inline double critical_step(double row_bound) { return row_bound > 0 ? 2.0 / std::sqrt(row_bound) : infinity; }
 
 /// Frequency error of centred differences on a linear oscillator resolved
 /// by N steps per period (theta = omega dt = 2 pi / N): the scheme runs at

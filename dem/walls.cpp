@@ -48,13 +48,9 @@ std::pair<Vec3, double> radial_of(const Wall &c, const Vec3 &x)
 }
 } // namespace
 
-double WallSet::cylinder_clearance(const Wall &c, const Vec3 &x)
-{
-  return c.radius - radial_of(c, x).second;
-}
+double WallSet::cylinder_clearance(const Wall &c, const Vec3 &x) { return c.radius - radial_of(c, x).second; }
 
-ContactGeometry WallSet::geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v,
-                                  const Vec3 &omega) const
+ContactGeometry WallSet::geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v, const Vec3 &omega) const
 {
   const Wall &wall = walls_[w];
   ContactGeometry g;

@@ -39,11 +39,11 @@ struct Wall
 {
   std::string name;
   WallShape shape = WallShape::plane;
-  Vec3 point = Vec3::Zero();        ///< m, a point on the plane / on the cylinder axis
-  Vec3 direction = Vec3::UnitZ();   ///< unit: plane normal into the balls / cylinder axis
-  double radius = 0;                ///< m, cylinder inner radius
-  Vec3 velocity = Vec3::Zero();     ///< m/s, translation of the wall
-  double radial_velocity = 0;       ///< m/s, cylinder radius rate (> 0 expanding)
+  Vec3 point = Vec3::Zero();      ///< m, a point on the plane / on the cylinder axis
+  Vec3 direction = Vec3::UnitZ(); ///< unit: plane normal into the balls / cylinder axis
+  double radius = 0;              ///< m, cylinder inner radius
+  Vec3 velocity = Vec3::Zero();   ///< m/s, translation of the wall
+  double radial_velocity = 0;     ///< m/s, cylinder radius rate (> 0 expanding)
   WallProps props;
   bool enabled = true;
 };
@@ -76,8 +76,7 @@ public:
 
   /// Geometry of the contact of a ball (centre x, radius r, velocity v, spin
   /// omega) with wall w.  The wall is the first entity.
-  ContactGeometry geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v,
-                           const Vec3 &omega) const;
+  ContactGeometry geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v, const Vec3 &omega) const;
 
   /// Velocity of the surface of wall w at the point nearest to x [m/s].
   Vec3 surface_velocity(WallIndex w, const Vec3 &x) const;
@@ -126,9 +125,9 @@ private:
   std::size_t slot(WallIndex w, Index p) const { return static_cast<std::size_t>(w) * stride_ + p; }
   void index_kept();
   std::vector<Wall> walls_;
-  std::vector<WallContact> kept_;              ///< the histories held, in no particular order
-  std::vector<std::int32_t> slot_;             ///< (wall, ball) wall-major: entry of kept_, or -1
-  std::vector<std::vector<WallContact>> new_;  ///< a force pass's new contacts, one list per thread
+  std::vector<WallContact> kept_;             ///< the histories held, in no particular order
+  std::vector<std::int32_t> slot_;            ///< (wall, ball) wall-major: entry of kept_, or -1
+  std::vector<std::vector<WallContact>> new_; ///< a force pass's new contacts, one list per thread
   std::size_t stride_ = 0;
   ContactState at_rest_;
 };

@@ -1,17 +1,17 @@
 # cmake/source_state.cmake on a scratch tree WORK: the sources' hash is the
 # same when nothing changed, changes with any source of dem/, continuum/ or
-# verify/ (its contents or its name, each kind of file), ignores files that
+# app/ (its contents or its name, each kind of file), ignores files that
 # make no result (docs) and editors' hidden files (a dangling lock link
 # included); the header is not rewritten when its content stays, so nothing
 # rebuilds; git_sha.h is written even outside a git work tree.
 file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK}/src/dem ${WORK}/src/continuum ${WORK}/src/verify/io ${WORK}/src/docs ${WORK}/out)
+file(MAKE_DIRECTORY ${WORK}/src/dem ${WORK}/src/continuum ${WORK}/src/app/io ${WORK}/src/docs ${WORK}/out)
 file(WRITE ${WORK}/src/dem/law.h "double k = 1;\n")
 file(WRITE ${WORK}/src/dem/law.cpp "int a;\n")
 file(WRITE ${WORK}/src/continuum/ode.cpp "int b;\n")
-file(WRITE ${WORK}/src/verify/io/out.h "int c;\n")
-file(WRITE ${WORK}/src/verify/io/out.cpp "int d;\n")
-file(WRITE ${WORK}/src/verify/io/info.h.in "@X@\n")
+file(WRITE ${WORK}/src/app/io/out.h "int c;\n")
+file(WRITE ${WORK}/src/app/io/out.cpp "int d;\n")
+file(WRITE ${WORK}/src/app/io/info.h.in "@X@\n")
 file(WRITE ${WORK}/src/docs/notes.md "notes\n")
 
 function(hash_now result)
@@ -56,11 +56,11 @@ endif()
 
 file(WRITE ${WORK}/src/docs/notes.md "other notes\n")
 file(WRITE "${WORK}/src/dem/.#law.cpp" "an editor's lock\n")
-file(CREATE_LINK ${WORK}/src/nowhere "${WORK}/src/verify/io/.#out.cpp" SYMBOLIC)
+file(CREATE_LINK ${WORK}/src/nowhere "${WORK}/src/app/io/.#out.cpp" SYMBOLIC)
 hash_now(ignored)
 expect("a docs file edited, editors' files added" ${last} ${ignored} TRUE)
 
-foreach(f dem/law.h dem/law.cpp continuum/ode.cpp verify/io/out.h verify/io/out.cpp verify/io/info.h.in)
+foreach(f dem/law.h dem/law.cpp continuum/ode.cpp app/io/out.h app/io/out.cpp app/io/info.h.in)
   file(APPEND ${WORK}/src/${f} "// edited\n")
   hash_now(edited)
   expect("${f} edited" ${last} ${edited} FALSE)

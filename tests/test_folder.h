@@ -17,7 +17,7 @@ namespace demvv_tests
 /// (the folder exists; `name` itself is not created).
 inline std::filesystem::path test_folder(const std::string &name)
 {
-  static const verify::ScratchDirectory scratch;
+  static const demvv::ScratchDirectory scratch;
   std::filesystem::create_directories(scratch.path());
   return std::filesystem::path(scratch.path()) / name;
 }

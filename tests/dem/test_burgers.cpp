@@ -34,8 +34,8 @@ TEST_CASE("Table 4.2: temperature-compensated strain rates of eq. 4.3", "[burger
   {
     double celsius, rate, compensated;
   };
-  const Row table[] = {{0, 0.02, 0.1},   {10, 0.02, 0.02}, {10, 0.1, 0.1},  {10, 0.5, 0.5},
-                       {20, 0.02, 0.004}, {20, 0.1, 0.02}, {20, 0.5, 0.1}};
+  const Row table[] = {{0, 0.02, 0.1},    {10, 0.02, 0.02}, {10, 0.1, 0.1}, {10, 0.5, 0.5},
+                       {20, 0.02, 0.004}, {20, 0.1, 0.02},  {20, 0.5, 0.1}};
   for (const Row &r : table)
   {
     INFO(r.celsius << " C, " << r.rate << " 1/s");
@@ -65,15 +65,15 @@ TEST_CASE("a Burger's shear element with rigid Kelvin and no dashpots is the lin
   CHECK((a - b).norm() <= 1e-12 * b.norm());
 }
 
-TEST_CASE("modified Burger's: elastic in compression, a relaxed Burger's element from U = 0 in tension",
-          "[burgers]")
+TEST_CASE("modified Burger's: elastic in compression, a relaxed Burger's element from U = 0 in tension", "[burgers]")
 {
   const double e0 = 5.5e6, dt = 1e-6;
   const dem::BurgersConstants element{5.5e6, 5.5e6, 5.5e6, 5.5e6};
   const dem::ModifiedBurgersLaw law({element, element, e0});
   const dem::BurgersCoefficients co(element, dt);
   dem::BurgersHistory h;
-  const auto step = [&](double overlap) {
+  const auto step = [&](double overlap)
+  {
     const double f = law.normal_force(none, overlap, h, dt);
     law.commit(h, overlap, f, dem::Vec3::Zero(), dem::Vec3::Zero(), dt);
     return f;
@@ -126,8 +126,8 @@ TEST_CASE("an unbonded Burger's contact slips at mu F_n and carries no tension (
   const dem::ContactBond no_bond;
   dem::ContactState state;
   dem::BurgersHistory h;
-  dem::ContactGeometry g{dem::Vec3::UnitX(), 1e-6, dem::Vec3(0, 1e-2, 0), dem::Vec3::Zero(), dem::Vec3::Zero(),
-                         0.885e-3, 0.885e-3};
+  dem::ContactGeometry g{dem::Vec3::UnitX(), 1e-6,    dem::Vec3(0, 1e-2, 0), dem::Vec3::Zero(), dem::Vec3::Zero(),
+                         0.885e-3,           0.885e-3};
   const double dt = 1e-6;
   dem::ResolvedContact r{};
   for (int s = 0; s < 200; ++s)

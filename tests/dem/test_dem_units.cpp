@@ -83,7 +83,8 @@ TEST_CASE("the neighbour grid takes balls at huge coordinates without casting th
   // Under UBSan (float-cast-overflow, the sanitizer build of CI) a cell
   // index cast from 1e300 / h is an error; the pairs must still be the
   // brute-force ones.
-  const auto pairs_of = [](const std::vector<Vec3> &centres) {
+  const auto pairs_of = [](const std::vector<Vec3> &centres)
+  {
     dem::ParticleStore p;
     for (const Vec3 &x : centres)
     {
@@ -134,7 +135,8 @@ TEST_CASE("Gaussian bond strengths are seeded and truncated and counted, removal
   dem::ParticleStore p;
   for (const Vec3 &x : dem::lattice_box(dem::Lattice::simple_cubic, 1e-3, 6, 6, 6))
     p.add(ball(x, 1e-3, 1e6));
-  auto make = [&] {
+  auto make = [&]
+  {
     auto sim = make_sim(p);
     sim.refresh_contacts();
     return sim;

@@ -132,7 +132,8 @@ TEST_CASE("an in-place rebuild gives the table a plain merge into a new one give
   for (int k = 0; k < 40; ++k)
     p.add(ball(Vec3(2e-3 * k, 0, 0), 1e-3, 1e6 * (1 + k % 3)));
   std::mt19937 random(7);
-  const auto random_pairs = [&](double share) {
+  const auto random_pairs = [&](double share)
+  {
     std::vector<dem::Pair> pairs;
     std::bernoulli_distribution take(share);
     for (dem::Index i = 0; i < 40; ++i)
@@ -226,9 +227,8 @@ TEST_CASE("entries share their pair constants, each distinct set once, through e
   for (dem::Index i = 0; i < 12; ++i)
     for (dem::Index j = i + 1; j < 12; ++j)
       all.emplace_back(i, j);
-  const auto same = [](const dem::ContactParams &a, const dem::ContactParams &b) {
-    return a.kn == b.kn && a.ks == b.ks && a.friction == b.friction;
-  };
+  const auto same = [](const dem::ContactParams &a, const dem::ContactParams &b)
+  { return a.kn == b.kn && a.ks == b.ks && a.friction == b.friction; };
   dem::ContactTable t;
   t.rebuild(all, p);
   REQUIRE(t.size() == 66);
@@ -307,8 +307,7 @@ TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][la
     {
       all_equal = all_equal && a.particles().position[p] == b.particles().position[p] &&
                   a.particles().velocity[p] == b.particles().velocity[p] &&
-                  a.particles().spin[p] == b.particles().spin[p] &&
-                  a.particles().force[p] == b.particles().force[p];
+                  a.particles().spin[p] == b.particles().spin[p] && a.particles().force[p] == b.particles().force[p];
       rest_differs = rest_differs || a.particles().position[p] != c.particles().position[p];
     }
     CHECK(all_equal);
@@ -321,8 +320,7 @@ TEST_CASE("a Burger's run snapshotted mid-test continues bit for bit", "[dem][la
       REQUIRE(other != nullptr);
       CHECK(other->state.normal_force == k.state.normal_force);
       CHECK(other->state.shear_force == k.state.shear_force);
-      CHECK(b.contacts().law_states()[other - &b.contacts()[0]] ==
-            a.contacts().law_states()[&k - &a.contacts()[0]]);
+      CHECK(b.contacts().law_states()[other - &b.contacts()[0]] == a.contacts().law_states()[&k - &a.contacts()[0]]);
     }
     CHECK(a.time() == b.time());
     CHECK(a.bonds_broken(dem::BreakMode::tension) == b.bonds_broken(dem::BreakMode::tension));
@@ -348,12 +346,13 @@ TEST_CASE("the force pass gives the same balls and break log on one to three thr
   // every ball sums its loads in one fixed order (dem/ball_forces.h), so the
   // thread count must change nothing, bonds breaking included, nor a count
   // that changes from step to step (as a run's thread governor may change
-  // it: verify/run/run.h); run(0) cycles through one to three threads.
+  // it: app/run/run.h); run(0) cycles through one to three threads.
   const int threads_before = omp_get_max_threads();
   for (const char *law : {"linear", "burgers", "modified_burgers"})
   {
     INFO(law);
-    const auto run = [&](int threads) {
+    const auto run = [&](int threads)
+    {
       omp_set_num_threads(threads);
       dem::Simulation sim = compressed_cylinder(law);
       std::vector<dem::BondBreak> breaks;

@@ -7,10 +7,11 @@
 // or whose script holds a line demvv did not mean to write: every line must
 // be one of demvv's own commands (reset, set, plot, a continuation of the
 // plot) or a comment without a line continuation or a backquote.
+#include "app/kinds/deck_kinds.h"
 #include "tests/fuzz/fuzz_support.h"
 
-#include "verify/plot/gnuplot.h"
-#include "verify/plot/run_figures.h"
+#include "app/plot/gnuplot.h"
+#include "app/plot/run_figures.h"
 
 #include <filesystem>
 #include <sstream>
@@ -26,15 +27,15 @@ bool demvv_line(const std::string &line)
   return line.rfind("# ", 0) == 0 && line.find('`') == std::string::npos && line.back() != '\\';
 }
 
-void check_figure(const verify::Figure &figure)
+void check_figure(const demvv::Figure &figure)
 {
-  const std::string name = verify::figure_name(figure.name);
-  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-                        std::string::npos)
+  const std::string name = demvv::figure_name(figure.name);
+  if (name.empty() ||
+      name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != std::string::npos)
     __builtin_trap();
-  verify::Figure named = figure;
+  demvv::Figure named = figure;
   named.name = name;
-  std::istringstream script(verify::gnuplot_script(named));
+  std::istringstream script(demvv::gnuplot_script(named));
   std::string line;
   while (std::getline(script, line))
   {
@@ -57,9 +58,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
   fuzz::write_input("run/summary.json", input.substr(0, cut));
   if (cut != std::string::npos)
     fuzz::write_input("run/series.csv", input.substr(cut + 5));
-  fuzz::refused([&] {
-    for (const verify::Figure &f : verify::run_figures(dir))
-      check_figure(f);
-  });
+  fuzz::refused(
+    [&]
+    {
+      for (const demvv::Figure &f : demvv::run_figures(dir, demvv::dem_deck_kinds()))
+        check_figure(f);
+    });
   return 0;
 }

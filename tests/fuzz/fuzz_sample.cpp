@@ -2,11 +2,11 @@
 // loaded and checked as a test cell as a uniaxial run loads it.
 #include "tests/fuzz/fuzz_support.h"
 
-#include "verify/io/sample_file.h"
+#include "app/io/sample_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
 {
   const std::string path = fuzz::write_input("sample.json", data, size);
-  fuzz::refused([&] { verify::check_test_cell(verify::read_sample(path), path); });
+  fuzz::refused([&] { demvv::check_test_cell(demvv::read_sample(path), path); });
   return 0;
 }

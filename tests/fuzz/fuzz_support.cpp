@@ -1,6 +1,7 @@
 #include "tests/fuzz/fuzz_support.h"
 
-#include "verify/decks/deck.h"
+#include "app/decks/deck.h"
+#include "app/kinds/deck_kinds.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -28,7 +29,8 @@ void remove_scratch()
 
 std::string scratch()
 {
-  static const bool made = [] {
+  static const bool made = []
+  {
     const std::string pattern = (std::filesystem::temp_directory_path() / "demvv_fuzz_XXXXXX").string();
     if (pattern.size() >= sizeof scratch_path)
       std::abort();
@@ -85,7 +87,7 @@ bool refused(const std::function<void()> &load)
 
 void read_and_parse(const std::string &path, const std::vector<std::string> &overrides)
 {
-  const verify::Deck deck = verify::Deck::from_file(path, overrides);
-  verify::find_deck_kind(deck.kind())->parse(deck);
+  const demvv::Deck deck = demvv::Deck::from_file(demvv::dem_deck_kinds(), path, overrides);
+  deck.kind_row().parse(deck);
 }
 } // namespace fuzz

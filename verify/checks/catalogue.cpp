@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-namespace verify
+namespace demvv
 {
 std::string_view category_definition(Category c)
 {
@@ -109,8 +109,8 @@ std::string verification_catalogue()
 
   o << "## Categories\n\n"
     << "The four kinds of evidence of thesis §2.5; each check belongs to one.\n\n";
-  for (Category c : {Category::code_verification, Category::solution_verification, Category::calibration,
-                     Category::validation})
+  for (Category c :
+       {Category::code_verification, Category::solution_verification, Category::calibration, Category::validation})
     o << "- **" << category_name(c) << "**: " << category_definition(c) << "\n";
 
   o << "\n## Tolerance classes\n\n"
@@ -166,4 +166,4 @@ std::string committed_catalogue_path()
 {
   return std::string(build_info::source_dir) + "/docs/verification_catalogue.md";
 }
-} // namespace verify
+} // namespace demvv

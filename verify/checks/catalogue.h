@@ -20,7 +20,7 @@
 #include <string>
 #include <string_view>
 
-namespace verify
+namespace demvv
 {
 /// One paragraph: what a V&V category asks and what counts as evidence for it.
 std::string_view category_definition(Category c);
@@ -37,4 +37,4 @@ std::string verification_catalogue();
 
 /// docs/verification_catalogue.md in the source tree this build was configured from.
 std::string committed_catalogue_path();
-} // namespace verify
+} // namespace demvv

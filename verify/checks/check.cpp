@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace verify
+namespace demvv
 {
 std::string_view category_name(Category c)
 {
@@ -92,19 +92,6 @@ Metric bound(std::string name, double value, double limit, bool at_least, Tolera
   return m;
 }
 
-void ConvergenceTable::add(double h, double error)
-{
-  ConvergenceRow r{h, error, 0};
-  if (!rows.empty() && rows.back().error > 0 && error > 0 && rows.back().h != h)
-    r.order = std::log(rows.back().error / error) / std::log(rows.back().h / h);
-  rows.push_back(r);
-}
-
-double ConvergenceTable::last_order() const
-{
-  return rows.size() < 2 ? 0.0 : rows.back().order;
-}
-
 bool CheckOutcome::pass() const
 {
   if (metrics.empty())
@@ -123,8 +110,5 @@ const Check *find_check(std::string_view id)
   return nullptr;
 }
 
-std::string default_cases_dir()
-{
-  return std::string(build_info::source_dir) + "/cases";
-}
-} // namespace verify
+std::string default_cases_dir() { return std::string(build_info::source_dir) + "/cases"; }
+} // namespace demvv

@@ -22,13 +22,14 @@
 // disagree.
 #pragma once
 
-#include "verify/plot/figure.h"
+#include "app/plot/figure.h"
+#include "app/reference/convergence.h"
 
 #include <string>
 #include <string_view>
 #include <vector>
 
-namespace verify
+namespace demvv
 {
 enum class Category
 {
@@ -58,12 +59,12 @@ std::string tolerance_class_list(const std::vector<ToleranceClass> &classes);
 
 struct Metric
 {
-  std::string name;       ///< what is measured, with its unit
-  double value = 0;       ///< measured
-  double tolerance = 0;   ///< pass when value <= tolerance (or >= for at_least)
-  bool at_least = false;  ///< pass when value >= tolerance instead
+  std::string name;                                   ///< what is measured, with its unit
+  double value = 0;                                   ///< measured
+  double tolerance = 0;                               ///< pass when value <= tolerance (or >= for at_least)
+  bool at_least = false;                              ///< pass when value >= tolerance instead
   ToleranceClass tolerance_class = ToleranceClass::A; ///< what limits the value's accuracy
-  std::string reason;     ///< why this tolerance
+  std::string reason;                                 ///< why this tolerance
   bool pass = false;
 };
 
@@ -76,28 +77,6 @@ Metric absolute_error(std::string name, double measured, double expected, double
                       std::string reason);
 /// value <= limit (or >= when at_least); fails on NaN.
 Metric bound(std::string name, double value, double limit, bool at_least, ToleranceClass tc, std::string reason);
-
-/// One level of a convergence study.
-struct ConvergenceRow
-{
-  double h = 0;      ///< step or mesh size
-  double error = 0;
-  double order = 0;  ///< observed order against the previous level (0 for the first)
-};
-
-struct ConvergenceTable
-{
-  std::string title;
-  std::string h_name;     ///< e.g. "dt [s]"
-  std::string error_name; ///< e.g. "max |u - u_exact| [m]"
-  double expected_order = 0;
-  std::vector<ConvergenceRow> rows;
-
-  /// Appends a level and computes its observed order from the previous one.
-  void add(double h, double error);
-  /// Observed order of the last level (0 if fewer than two levels).
-  double last_order() const;
-};
 
 struct CheckOutcome
 {
@@ -134,4 +113,4 @@ const Check *find_check(std::string_view id);
 
 /// The case directory compiled in (the source tree's cases/).
 std::string default_cases_dir();
-} // namespace verify
+} // namespace demvv

@@ -2,9 +2,9 @@
 // V11 lattice porosity and coordination.
 #include "verify/checks/checks_bulk.h"
 
+#include "app/kinds/compare.h"
+#include "app/kinds/uniaxial.h"
 #include "verify/checks/checks_support.h"
-#include "verify/kinds/compare.h"
-#include "verify/kinds/uniaxial.h"
 
 #include "dem/bonds.h"
 #include "dem/measure.h"
@@ -12,7 +12,7 @@
 
 #include <cmath>
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_energy_audit(const CheckContext &ctx)
 {
@@ -37,7 +37,8 @@ CheckOutcome check_energy_audit(const CheckContext &ctx)
   out.metrics.push_back(bound("damping work / boundary work", damping / work.back(), 1e-3, true, ToleranceClass::B,
                               "local damping must act for the audit to cover it"));
   out.notes.push_back("energy audit on " + std::to_string(r.summary["sample"]["particles"].get<long>()) +
-                      " balls; final boundary work " + num(work.back()) + " J, residual " + num(residual.back()) + " J");
+                      " balls; final boundary work " + num(work.back()) + " J, residual " + num(residual.back()) +
+                      " J");
   return out;
 }
 
@@ -163,8 +164,8 @@ CheckOutcome check_packing_identity(const CheckContext &ctx)
 {
   CheckOutcome out;
   const std::string sample = ctx.quick ? "1000-ball sample (p03)" : "6000-ball sample (p01)";
-  for (const char *name : {"c10_identity_constant_rate", "c11_identity_creep", "c12_identity_relaxation",
-                           "c13_identity_cyclic"})
+  for (const char *name :
+       {"c10_identity_constant_rate", "c11_identity_creep", "c12_identity_relaxation", "c13_identity_cyclic"})
   {
     const CompareResult r = compare_case(ctx, name);
     const nlohmann::json &s = r.summary;
@@ -178,11 +179,11 @@ CheckOutcome check_packing_identity(const CheckContext &ctx)
     // four times stiffer platen contacts); inertia (inertial number below
     // 1e-3: the platen-contact oscillation is 1-2 % of the stress during a
     // ramp); geometry and contacts made (strains below 0.3 %: under 1 %).
-    out.metrics.push_back(bound(history + ": max |DEM - calibrated continuum| / max, " +
-                                  (creep ? "axial strain" : "axial stress"),
-                                s["difference_calibrated"]["relative"].get<double>(), 0.05, false, ToleranceClass::B,
-                                "platen springs <= 3 %, inertia (I < 1e-3) <= 2 %, geometry and contacts made at "
-                                "strains below 0.3 % < 1 %; continuum time-step error below 0.5 %"));
+    out.metrics.push_back(
+      bound(history + ": max |DEM - calibrated continuum| / max, " + (creep ? "axial strain" : "axial stress"),
+            s["difference_calibrated"]["relative"].get<double>(), 0.05, false, ToleranceClass::B,
+            "platen springs <= 3 %, inertia (I < 1e-3) <= 2 %, geometry and contacts made at "
+            "strains below 0.3 % < 1 %; continuum time-step error below 0.5 %"));
     out.metrics.push_back(bound(history + ": largest inertial number after the start-up",
                                 s["uncertainty"]["dem_quasi_static_indicators"]["max_inertial_number"].get<double>(),
                                 1e-3, false, ToleranceClass::B, "the quasi-static premise of the identity"));
@@ -201,11 +202,10 @@ CheckOutcome check_packing_identity(const CheckContext &ctx)
     out.notes.push_back(history + " on the " + sample + ": E_DEM = " + num(s["moduli"]["young_dem_pa"].get<double>()) +
                         " Pa, E_affine = " + num(s["moduli"]["young_affine_pa"].get<double>()) +
                         " Pa (non-affine ratio " + num(s["moduli"]["non_affine_ratio"].get<double>()) +
-                        "), nu_DEM = " + num(s["moduli"]["poisson_dem"].get<double>()) + ", Z = " +
-                        num(s["packing_measured"]["coordination_number"].get<double>()) + ", phi = " +
-                        num(s["packing_measured"]["solid_fraction"].get<double>()) +
-                        "; affine route off by " + num(s["difference_affine"]["relative"].get<double>()) +
-                        "; continuum time-step error " +
+                        "), nu_DEM = " + num(s["moduli"]["poisson_dem"].get<double>()) +
+                        ", Z = " + num(s["packing_measured"]["coordination_number"].get<double>()) + ", phi = " +
+                        num(s["packing_measured"]["solid_fraction"].get<double>()) + "; affine route off by " +
+                        num(s["difference_affine"]["relative"].get<double>()) + "; continuum time-step error " +
                         num(s["uncertainty"]["continuum_time_step_relative"].get<double>()));
   }
 
@@ -232,13 +232,13 @@ CheckOutcome check_packing_identity(const CheckContext &ctx)
     for (Curve &c : f.curves)
       c.y_scale = 1e-3;
     out.figures.push_back(std::move(f));
-    out.notes.push_back(std::string(modified ? "model form, modified Burger's" : "model form, bonded platens") +
-                        " on the " + sample + ": largest difference " + num(gap) + " of the peak stress at t = " +
-                        num(r.summary["difference_calibrated"]["time_s"].get<double>()) +
-                        " s (reported, not pass/failed" + (modified ? " beyond parting visibly" : "") +
-                        "); continuum mesh error bound " +
-                        num(r.summary["uncertainty"]["continuum_mesh_relative_bound"].get<double>()));
+    out.notes.push_back(
+      std::string(modified ? "model form, modified Burger's" : "model form, bonded platens") + " on the " + sample +
+      ": largest difference " + num(gap) +
+      " of the peak stress at t = " + num(r.summary["difference_calibrated"]["time_s"].get<double>()) +
+      " s (reported, not pass/failed" + (modified ? " beyond parting visibly" : "") + "); continuum mesh error bound " +
+      num(r.summary["uncertainty"]["continuum_mesh_relative_bound"].get<double>()));
   }
   return out;
 }
-} // namespace verify
+} // namespace demvv

@@ -4,10 +4,10 @@
 
 #include "verify/checks/check.h"
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_energy_audit(const CheckContext &ctx);
 CheckOutcome check_chain_wave(const CheckContext &ctx);
 CheckOutcome check_lattice_measurements(const CheckContext &ctx);
 CheckOutcome check_packing_identity(const CheckContext &ctx);
-} // namespace verify
+} // namespace demvv

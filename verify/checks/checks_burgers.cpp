@@ -14,7 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
@@ -34,11 +34,11 @@ dem::BurgersConstants normal_constants(const dem::Simulation &sim)
 struct Pull
 {
   std::vector<double> time, extension, tension;
-  double speed = 0;   ///< m/s, prescribed
-  double dt = 0;      ///< s
+  double speed = 0; ///< m/s, prescribed
+  double dt = 0;    ///< s
   long steps = 0;
-  dem::BurgersConstants law; ///< as the run used them (after any scaling)
-  double bond_strength = 0;  ///< N, normal strength at the end
+  dem::BurgersConstants law;        ///< as the run used them (after any scaling)
+  double bond_strength = 0;         ///< N, normal strength at the end
   double break_time = std::nan(""); ///< s, first row with the bond broken
 };
 
@@ -94,7 +94,8 @@ CheckOutcome check_burgers_update(const CheckContext & /*ctx*/)
   // --- order of the CN update at constant velocity (eq. 7.18) -------------
   // The law alone, driven by a prescribed overlap history U = -v t (a pull).
   const double v = 1, horizon = 2;
-  const auto pull_error = [&](double dt) {
+  const auto pull_error = [&](double dt)
+  {
     dem::BurgersHistory h;
     const long n = std::lround(horizon / dt);
     double f = 0;
@@ -129,7 +130,8 @@ CheckOutcome check_burgers_update(const CheckContext & /*ctx*/)
     int sign_changes = 0;
     double ratio = 0; ///< u_k after / before, last step
   };
-  const auto recover = [&](double dt) {
+  const auto recover = [&](double dt)
+  {
     dem::BurgersHistory h;
     double overlap = 0;
     for (int s = 0; s < 3; ++s)
@@ -186,30 +188,27 @@ CheckOutcome check_burgers_pull(const CheckContext &ctx)
   std::vector<double> closed;
   for (double u : p.extension)
     closed.push_back(p.law.constant_velocity_force(u / p.speed, p.speed));
-  out.figures.push_back(make_figure("pull", "Burger's contact pulled at constant speed", "extension [mm]",
-                                    "tensile force [N]",
-                                    {curve("demvv", p.extension, p.tension),
-                                     curve("eq. 7.18", p.extension, closed, CurveStyle::dashed)},
-                                    "The contact force at every step beside the closed form at the same extension."));
+  out.figures.push_back(
+    make_figure("pull", "Burger's contact pulled at constant speed", "extension [mm]", "tensile force [N]",
+                {curve("demvv", p.extension, p.tension), curve("eq. 7.18", p.extension, closed, CurveStyle::dashed)},
+                "The contact force at every step beside the closed form at the same extension."));
   std::vector<double> residual;
   const double scale = p.law.maxwell_viscosity * p.speed, tolerance = trapezoid_tolerance(p.law, p.dt);
   for (std::size_t k = 0; k < closed.size(); ++k)
     residual.push_back((p.tension[k] - closed[k]) / scale);
-  out.figures.push_back(make_figure("pull_residual", "Residual of the pull against eq. 7.18", "extension [mm]",
-                                    "(F - F_7.18) / (C_inf v) [-]",
-                                    {curve("residual", p.extension, residual),
-                                     curve("tolerance", {p.extension.front(), p.extension.back()},
-                                           {tolerance, tolerance}, CurveStyle::dashed),
-                                     curve("", {p.extension.front(), p.extension.back()}, {-tolerance, -tolerance},
-                                           CurveStyle::dashed)},
-                                    "The metric is the largest |residual|; it passes inside the dashed band."));
+  out.figures.push_back(make_figure(
+    "pull_residual", "Residual of the pull against eq. 7.18", "extension [mm]", "(F - F_7.18) / (C_inf v) [-]",
+    {curve("residual", p.extension, residual),
+     curve("tolerance", {p.extension.front(), p.extension.back()}, {tolerance, tolerance}, CurveStyle::dashed),
+     curve("", {p.extension.front(), p.extension.back()}, {-tolerance, -tolerance}, CurveStyle::dashed)},
+    "The metric is the largest |residual|; it passes inside the dashed band."));
   out.figures.back().curves[2].colour = 2;
   for (Figure &f : out.figures)
     for (Curve &c : f.curves)
       c.x_scale = 1e3;
   out.notes.push_back("Pulled at " + num(p.speed) + " m/s for " + num(p.time.back()) + " s in " +
-                      std::to_string(p.steps) + " steps; f(end) = " + num(p.tension.back()) + " N, C_inf v = " +
-                      num(p.law.maxwell_viscosity * p.speed) + " N.");
+                      std::to_string(p.steps) + " steps; f(end) = " + num(p.tension.back()) +
+                      " N, C_inf v = " + num(p.law.maxwell_viscosity * p.speed) + " N.");
   return out;
 }
 
@@ -233,7 +232,8 @@ CheckOutcome check_viscosity_scaling(const CheckContext &ctx)
                               ToleranceClass::B,
                               "eq. 7.21 is exact; the fast run's own trapezoidal error, (lambda_2 dt)^2/12"));
   // The thesis's counter-example (Fig. 7.8): C_inf alone scaled.
-  const double expected_gap = [&] {
+  const double expected_gap = [&]
+  {
     double g = 0;
     for (std::size_t k = 0; k < c_inf.time.size(); ++k)
     {
@@ -292,4 +292,4 @@ CheckOutcome check_displacement_criterion(const CheckContext &ctx)
   }
   return out;
 }
-} // namespace verify
+} // namespace demvv

@@ -3,10 +3,10 @@
 
 #include "verify/checks/check.h"
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_burgers_update(const CheckContext &ctx);
 CheckOutcome check_burgers_pull(const CheckContext &ctx);
 CheckOutcome check_viscosity_scaling(const CheckContext &ctx);
 CheckOutcome check_displacement_criterion(const CheckContext &ctx);
-} // namespace verify
+} // namespace demvv

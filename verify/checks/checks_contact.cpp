@@ -5,13 +5,13 @@
 
 #include "verify/checks/checks_support.h"
 
-#include "verify/run/analysis.h"
+#include "app/run/analysis.h"
 #include "dem/law_linear.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
@@ -68,8 +68,8 @@ void impact_metrics(CheckOutcome &out, const std::string &label, const std::vect
   // Onset and end each fall inside one step: the force is positive on the
   // steps in (t_on, t_off), so (last - first + dt) is within one step of t_c.
   out.metrics.push_back(relative_error(label + ": contact duration, relative error",
-                                       measured.last - measured.first + dt, tc, dt / tc,
-                                       ToleranceClass::C, "onset and end each resolved to one step (dt / t_c)"));
+                                       measured.last - measured.first + dt, tc, dt / tc, ToleranceClass::C,
+                                       "onset and end each resolved to one step (dt / t_c)"));
   // The centred-difference solution of a linear spring has amplitude and
   // phase errors O((omega dt)^2) (both below (omega dt)^2 / 2), and
   // sampling the sine at steps misses its top by at most (omega dt)^2 / 8.
@@ -97,8 +97,8 @@ CheckOutcome check_linear_impact(const CheckContext &ctx)
     const double v_in = first_row_value(b0, "vx_mps") - first_row_value(b1, "vx_mps");
     const double v_out = b1.column("vx_mps").back() - b0.column("vx_mps").back();
     const double dt = r.series.column("time_step_s").back();
-    impact_metrics(out, "ball-ball", r.contacts.column("time_s"), r.contacts.column("normal_force_n"), dt, kn,
-                   m_red, v_in, v_out);
+    impact_metrics(out, "ball-ball", r.contacts.column("time_s"), r.contacts.column("normal_force_n"), dt, kn, m_red,
+                   v_in, v_out);
   }
   {
     const SceneResult r = run_case(ctx, "v01_linear_impact_wall");
@@ -294,4 +294,4 @@ CheckOutcome check_free_flight(const CheckContext &ctx)
                               "exact for a constant force; n steps of round-off"));
   return out;
 }
-} // namespace verify
+} // namespace demvv

@@ -3,10 +3,10 @@
 
 #include "verify/checks/check.h"
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_linear_impact(const CheckContext &ctx);
 CheckOutcome check_bond_failure(const CheckContext &ctx);
 CheckOutcome check_coulomb_slip(const CheckContext &ctx);
 CheckOutcome check_free_flight(const CheckContext &ctx);
-} // namespace verify
+} // namespace demvv

@@ -6,13 +6,13 @@
 // observed order of convergence.
 #include "verify/checks/checks_continuum.h"
 
+#include "app/io/output.h"
+#include "app/kinds/continuum_cylinder.h"
+#include "app/kinds/continuum_mms.h"
+#include "app/kinds/continuum_ode.h"
+#include "app/kinds/uniaxial.h"
+#include "app/reference/continuum_reference.h"
 #include "verify/checks/checks_support.h"
-#include "verify/kinds/continuum_cylinder.h"
-#include "verify/kinds/continuum_mms.h"
-#include "verify/kinds/continuum_ode.h"
-#include "verify/checks/continuum_reference.h"
-#include "verify/io/output.h"
-#include "verify/kinds/uniaxial.h"
 
 #include "continuum/material_point.h"
 
@@ -23,7 +23,7 @@
 #include <omp.h>
 #include <unistd.h>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
@@ -57,7 +57,6 @@ double worst_order_deviation(const ConvergenceTable &t, double expected)
   const std::size_t n = t.rows.size();
   return std::max(std::abs(t.rows[n - 1].order - expected), std::abs(t.rows[n - 2].order - expected));
 }
-
 
 std::string setting(const std::string &key, double value) { return key + "=" + num(value); }
 
@@ -93,8 +92,8 @@ CheckOutcome check_burgers_ode_histories(const CheckContext &ctx)
     {"contact, cyclic 0.1 m at 1 Hz, vs the hereditary integral", {"loading/history=cyclic"}},
     {"contact, displacement step 0.1 m, vs the relaxation modulus", {"loading/history=step", "loading/level=0.1"}},
     {"material point, strain rate 0.005 /s, vs eq. 7.18 in Pa",
-     {"chain/scale=material point", "chain/maxwell spring=1e9", "chain/maxwell dashpot=2e9",
-      "chain/kelvin spring=5e8", "chain/kelvin dashpot=5e8", "loading/rate=0.005"}},
+     {"chain/scale=material point", "chain/maxwell spring=1e9", "chain/maxwell dashpot=2e9", "chain/kelvin spring=5e8",
+      "chain/kelvin dashpot=5e8", "loading/rate=0.005"}},
   };
   for (const Variant &v : variants)
     out.metrics.push_back(bound(std::string(v.label) + ": max |f - f_closed| / max |f_closed|",
@@ -103,21 +102,21 @@ CheckOutcome check_burgers_ode_histories(const CheckContext &ctx)
 
   // Work-precision: the error must follow the tolerance over eight decades.
   const char *histories[] = {"constant rate", "ramp and hold", "cyclic"};
-  for (const char *history : ctx.quick ? std::vector<const char *>{histories[0]}
-                                       : std::vector<const char *>{histories, histories + 3})
+  for (const char *history :
+       ctx.quick ? std::vector<const char *>{histories[0]} : std::vector<const char *>{histories, histories + 3})
   {
     ConvergenceTable t;
     t.title = std::string("work-precision, ") + history + ": CVODE against its closed form";
     t.h_name = "rtol";
     t.error_name = "max |f - f_closed| / max |f_closed|";
     t.expected_order = 1;
-    double lowest = std::numeric_limits<double>::infinity(), highest = 0;
+    double lowest = inf, highest = 0;
     for (int k = 4; k <= 12; ++k)
     {
       const double tol = std::pow(10.0, -k);
-      const double e = ode_case(ctx, name, {std::string("loading/history=") + history,
-                                            setting("solver/relative tolerance", tol)})
-                         .relative_error;
+      const double e =
+        ode_case(ctx, name, {std::string("loading/history=") + history, setting("solver/relative tolerance", tol)})
+          .relative_error;
       t.add(tol, e);
       lowest = std::min(lowest, e / tol);
       highest = std::max(highest, e / tol);
@@ -215,7 +214,8 @@ continuum::ElasticModuli discrete_affine_moduli(const std::vector<std::array<dou
   // Contacts per unit volume: N Z / 2 with N = phi V / (4/3 pi R^3).
   const double R = packing.radius;
   const double density = packing.solid_fraction * packing.coordination / (2 * 4.0 / 3.0 * pi * R * R * R);
-  const auto stress = [&](const Matrix &strain) {
+  const auto stress = [&](const Matrix &strain)
+  {
     Matrix sigma{};
     for (const auto &n : normals)
     {
@@ -256,9 +256,9 @@ CheckOutcome check_affine_moduli(const CheckContext & /*ctx*/)
   const char *reason = "the normals form a spherical 5-design, so the orientation average is exact; the "
                        "difference is round-off of a 20-term sum (~1e-15)";
   for (const double ks : {0.0, 0.1 * kn, kn})
-    for (const auto &[label, normals] : {std::pair<const char *, std::vector<std::array<double, 3>>>{
-                                           "icosahedron", icosahedron_normals()},
-                                         {"dodecahedron", dodecahedron_normals()}})
+    for (const auto &[label, normals] :
+         {std::pair<const char *, std::vector<std::array<double, 3>>>{"icosahedron", icosahedron_normals()},
+          {"dodecahedron", dodecahedron_normals()}})
     {
       const continuum::ElasticModuli exact = continuum::affine_moduli(packing, kn, ks);
       const continuum::ElasticModuli sum = discrete_affine_moduli(normals, packing, kn, ks);
@@ -322,7 +322,8 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
     const char *deck;
     std::vector<std::string> overrides;
   };
-  const Route routes[] = {{"calibrated (E, nu of c07's summary.json)", "c08_cylinder_calibrated",
+  const Route routes[] = {{"calibrated (E, nu of c07's summary.json)",
+                           "c08_cylinder_calibrated",
                            {"material/calibrated/summary file=" + dir + "/summary.json"}},
                           {"affine (Z 5.8, phi 0.635)", "c09_cylinder_affine", {}}};
   for (const Route &route : routes)
@@ -335,11 +336,11 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
     // c = E / k_n, by the route's own measurement: the DEM run, or the
     // affine sum over contact normals (V18) with k_n = 1, k_s = r.
     const bool calibrated = std::string(route.deck) == "c08_cylinder_calibrated";
-    const continuum::ElasticModuli unit = discrete_affine_moduli(
-      icosahedron_normals(),
-      {deck.real("material/affine/coordination number"), deck.real("material/affine/solid fraction"),
-       deck.real("material/affine/particle radius")},
-      1, r);
+    const continuum::ElasticModuli unit = discrete_affine_moduli(icosahedron_normals(),
+                                                                 {deck.real("material/affine/coordination number"),
+                                                                  deck.real("material/affine/solid fraction"),
+                                                                  deck.real("material/affine/particle radius")},
+                                                                 1, r);
     const double c = calibrated ? young / deck.real("material/calibrated/reference normal stiffness") : unit.young;
     const double nu = calibrated ? poisson : unit.poisson;
     const double rate = deck.real("loading/strain rate");
@@ -375,10 +376,10 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
     // Trapezoidal error of a mode e^{-t/tau} after its decay: ~ (dt/tau)^2 / 12
     // relative; ten times that bounds the sum over the chain's two modes.
     const double bound_estimate = 10 * (dt / tau) * (dt / tau) / 12;
-    out.metrics.push_back(bound(std::string(route.label) + ": max |sigma - c f_B| / max |c f_B| at the deck's step",
-                                production, bound_estimate, false, ToleranceClass::B,
-                                "trapezoidal time error ~ (dt/tau)^2/12 for the shortest contact time tau = " +
-                                  num(tau) + " s, times 10"));
+    out.metrics.push_back(
+      bound(std::string(route.label) + ": max |sigma - c f_B| / max |c f_B| at the deck's step", production,
+            bound_estimate, false, ToleranceClass::B,
+            "trapezoidal time error ~ (dt/tau)^2/12 for the shortest contact time tau = " + num(tau) + " s, times 10"));
     out.metrics.push_back(bound(std::string(route.label) + ": largest |observed order in dt - 2| over the finest "
                                                            "three steps",
                                 worst_order_deviation(t, 2), 0.1, false, ToleranceClass::B,
@@ -442,10 +443,9 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
   std::vector<double> own_area = solid.series.column("axial_stress_pa");
   for (double &s : own_area)
     s *= area_ratio;
-  out.metrics.push_back(bound("3D quarter (" + std::to_string(solid.mesh.cells) +
-                                " cells) vs axisymmetric: stress on the mesh's platen area",
-                              relative_deviation(own_area, flat.series.column("axial_stress_pa")), 1e-9, false,
-                              ToleranceClass::A, patch_reason));
+  out.metrics.push_back(bound(
+    "3D quarter (" + std::to_string(solid.mesh.cells) + " cells) vs axisymmetric: stress on the mesh's platen area",
+    relative_deviation(own_area, flat.series.column("axial_stress_pa")), 1e-9, false, ToleranceClass::A, patch_reason));
   out.metrics.push_back(
     bound("3D quarter vs axisymmetric: radial strain",
           relative_deviation(solid.series.column("radial_strain"), flat.series.column("radial_strain")), 1e-9, false,
@@ -465,19 +465,20 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
     for (unsigned int n = spec.time_steps / 2; n <= spec.time_steps * (ctx.quick ? 4u : 8u); n *= 2)
     {
       const CylinderResult run =
-        cylinder_case(ctx, name, {"discretisation/refinements=0", "discretisation/time steps=" + std::to_string(n),
-                                  std::string("material/model=") + model});
-      t.add(run.mesh.time_step, relative_deviation(run.series.column("axial_stress_pa"),
-                                                   run.series.column("axial_stress_closed_form_pa")));
+        cylinder_case(ctx, name,
+                      {"discretisation/refinements=0", "discretisation/time steps=" + std::to_string(n),
+                       std::string("material/model=") + model});
+      t.add(run.mesh.time_step,
+            relative_deviation(run.series.column("axial_stress_pa"), run.series.column("axial_stress_closed_form_pa")));
       if (n == spec.time_steps)
       {
         const std::string tag = std::string(model) == "same shape" ? "same_shape" : "deviatoric";
-        out.figures.push_back(make_figure(
-          "stress_" + tag, std::string("Frictionless cylinder, ") + model + " bulk, at the deck's step", "time [s]",
-          "axial stress [MPa]",
-          {curve("finite elements", run.series.column("time_s"), run.series.column("axial_stress_pa")),
-           curve("eq. 7.18 (uniaxial chain)", run.series.column("time_s"),
-                 run.series.column("axial_stress_closed_form_pa"), CurveStyle::dashed)}));
+        out.figures.push_back(
+          make_figure("stress_" + tag, std::string("Frictionless cylinder, ") + model + " bulk, at the deck's step",
+                      "time [s]", "axial stress [MPa]",
+                      {curve("finite elements", run.series.column("time_s"), run.series.column("axial_stress_pa")),
+                       curve("eq. 7.18 (uniaxial chain)", run.series.column("time_s"),
+                             run.series.column("axial_stress_closed_form_pa"), CurveStyle::dashed)}));
         for (Curve &c : out.figures.back().curves)
           c.y_scale = 1e-6;
         production = t.rows.back().error;
@@ -563,9 +564,9 @@ CheckOutcome check_manufactured_solutions(const CheckContext &ctx)
 CheckOutcome check_bonded_gci(const CheckContext &ctx)
 {
   CheckOutcome out;
-  const CylinderResult r = cylinder_case(ctx, "c04_cylinder_bonded_gci",
-                                         {ctx.quick ? "study/gci refinements=1, 2, 3, 4"
-                                                    : "study/gci refinements=2, 3, 4, 5"});
+  const CylinderResult r =
+    cylinder_case(ctx, "c04_cylinder_bonded_gci",
+                  {ctx.quick ? "study/gci refinements=1, 2, 3, 4" : "study/gci refinements=2, 3, 4, 5"});
   if (r.gci.size() != 4)
     throw std::runtime_error("c04_cylinder_bonded_gci: expected two GCI triplets");
   const char *quantities[] = {"peak stress", "stress at 1 % strain"};
@@ -604,4 +605,4 @@ CheckOutcome check_bonded_gci(const CheckContext &ctx)
   }
   return out;
 }
-} // namespace verify
+} // namespace demvv

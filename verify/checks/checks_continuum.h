@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_burgers_ode_histories(const CheckContext &ctx);  // V12
 CheckOutcome check_burgers_creep(const CheckContext &ctx);          // V13
@@ -31,4 +31,4 @@ continuum::ElasticModuli discrete_affine_moduli(const std::vector<std::array<dou
 std::vector<std::array<double, 3>> icosahedron_normals();
 /// Unit normals of the dodecahedron's 20 vertices (a spherical 5-design).
 std::vector<std::array<double, 3>> dodecahedron_normals();
-} // namespace verify
+} // namespace demvv

@@ -15,15 +15,15 @@
 #include <random>
 #include <set>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
 using dem::Vec3;
 
-constexpr double R = 0.885e-3;   // m, thesis grain radius
-constexpr double KN = 1.2e7;     // N/m per ball (thesis §6.2, interpreted)
-constexpr double KS = 1.2e6;     // N/m per ball
+constexpr double R = 0.885e-3; // m, thesis grain radius
+constexpr double KN = 1.2e7;   // N/m per ball (thesis §6.2, interpreted)
+constexpr double KS = 1.2e6;   // N/m per ball
 
 dem::BallSpec ball_at(const Vec3 &x, double r = R, double kn = KN, double ks = KS, double mu = 0.5)
 {
@@ -109,7 +109,8 @@ std::vector<Vec3> cluster_forces(const std::vector<int> &order, int steps)
 {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
-  const std::vector<Vec3> grid = [] {
+  const std::vector<Vec3> grid = []
+  {
     std::vector<Vec3> g;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -252,10 +253,9 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     const double c = 1 - h * h / 2;
     const double lambda = std::abs(c) + std::sqrt(c * c - 1);
     const double observed = std::pow(std::max(amp[69], amp[68]) / std::max(amp[29], amp[28]), 1.0 / 40);
-    out.metrics.push_back(
-      relative_error("omega dt = 2.02: growth factor per step vs |lambda| of the scheme", observed, lambda, 1e-3,
-                     ToleranceClass::B,
-                     "the growing mode dominates after 40 steps; the other decays like 1/|lambda|^k"));
+    out.metrics.push_back(relative_error(
+      "omega dt = 2.02: growth factor per step vs |lambda| of the scheme", observed, lambda, 1e-3, ToleranceClass::B,
+      "the growing mode dominates after 40 steps; the other decays like 1/|lambda|^k"));
   }
   {
     // The automatic step against the exact limit of small random assemblies:
@@ -363,9 +363,7 @@ double mode_error(Mode mode, int steps_per_period, double &omega)
   const double t = sim.time();
   const double exact = amplitude_rate / omega * std::sin(omega * t);
   const dem::ParticleStore &P = sim.particles();
-  const double value = mode == Mode::normal  ? P.position[1].x() - 2 * R
-                       : mode == Mode::shear ? P.position[1].y()
-                                             : 0.0;
+  const double value = mode == Mode::normal ? P.position[1].x() - 2 * R : mode == Mode::shear ? P.position[1].y() : 0.0;
   if (mode == Mode::rolling)
   {
     // The spin integrates to an angle; recover it from the shear force,
@@ -381,7 +379,8 @@ double mode_error(Mode mode, int steps_per_period, double &omega)
 CheckOutcome check_second_order(const CheckContext &ctx)
 {
   CheckOutcome out;
-  const std::vector<int> levels = ctx.quick ? std::vector<int>{20, 40, 80, 160} : std::vector<int>{20, 40, 80, 160, 320, 640};
+  const std::vector<int> levels =
+    ctx.quick ? std::vector<int>{20, 40, 80, 160} : std::vector<int>{20, 40, 80, 160, 320, 640};
   const std::pair<Mode, const char *> modes[] = {
     {Mode::normal, "normal translation"}, {Mode::shear, "shear translation"}, {Mode::rolling, "rotation"}};
   for (const auto &[mode, name] : modes)
@@ -446,4 +445,4 @@ CheckOutcome check_neighbour_search(const CheckContext &ctx)
                       " candidate pairs compared");
   return out;
 }
-} // namespace verify
+} // namespace demvv

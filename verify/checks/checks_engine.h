@@ -3,10 +3,10 @@
 
 #include "verify/checks/check.h"
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_objectivity(const CheckContext &ctx);
 CheckOutcome check_critical_step(const CheckContext &ctx);
 CheckOutcome check_second_order(const CheckContext &ctx);
 CheckOutcome check_neighbour_search(const CheckContext &ctx);
-} // namespace verify
+} // namespace demvv

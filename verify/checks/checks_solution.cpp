@@ -11,7 +11,7 @@
 //       successive levels, their observed order where the changes allow
 //       one, and a bound on the discretisation error of the 0.8 result:
 //       Roache's grid convergence index with the safety factor as the mesh
-//       size (Celik et al. 2008, verify/kinds/continuum_gci.h), safety
+//       size (Celik et al. 2008, app/kinds/continuum_gci.h), safety
 //       factor 1.25 when the levels converge monotonically, else 3 times the
 //       largest distance from the 0.8 result to the others.
 //  V27  the loading rate: the top platen at v, v/2, v/4 (0.02, 0.01 and
@@ -59,12 +59,13 @@
 // for a member at safety 0.8 and 0.01 m/s, V26 3 minutes, V27 2.5
 // minutes, the ensemble 7 minutes with its ten preparations.
 #include "verify/checks/checks_solution.h"
+#include "app/kinds/deck_kinds.h"
 
+#include "app/decks/csv_input.h"
+#include "app/kinds/continuum_cylinder.h"
+#include "app/kinds/continuum_gci.h"
+#include "app/studies/sweep.h"
 #include "verify/checks/checks_support.h"
-#include "verify/cli/sweep.h"
-#include "verify/decks/csv_input.h"
-#include "verify/kinds/continuum_cylinder.h"
-#include "verify/kinds/continuum_gci.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,7 +74,7 @@
 #include <string>
 #include <vector>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
@@ -108,7 +109,7 @@ BulkStudy bulk_study(const CheckContext &ctx)
   else
     s.description = "--full: the prepared 1000-ball sample of cases/p03_sample_1000 (the t66_friction recipe, to "
                     "2.5 % strain)";
-  s.platen_speed = Deck::from_file(s.deck, s.entries).real("loading/platen speed");
+  s.platen_speed = Deck::from_file(deck_kinds(), s.deck, s.entries).real("loading/platen speed");
   return s;
 }
 
@@ -125,9 +126,9 @@ struct Levels
 /// What a check reads from a member's series.csv.
 struct SeriesReading
 {
-  double stress_at_fixed = 0;   ///< axial stress at the study's fixed strain [Pa] (NaN when not reached)
-  double strain_per_step = 0;   ///< axial strain of one time step at the last row [-]
-  double final_strain = 0;      ///< axial strain of the last row [-]
+  double stress_at_fixed = 0; ///< axial stress at the study's fixed strain [Pa] (NaN when not reached)
+  double strain_per_step = 0; ///< axial strain of one time step at the last row [-]
+  double final_strain = 0;    ///< axial strain of the last row [-]
 };
 
 SeriesReading read_series(const std::string &directory, double fixed_strain)
@@ -150,11 +151,11 @@ SeriesReading read_series(const std::string &directory, double fixed_strain)
 /// What a check reads from one member.
 struct MemberResult
 {
-  double peak = 0;            ///< peak axial stress [Pa]
-  double strain_at_peak = 0;  ///< [-]
-  double modulus = 0;         ///< initial modulus [Pa]
+  double peak = 0;           ///< peak axial stress [Pa]
+  double strain_at_peak = 0; ///< [-]
+  double modulus = 0;        ///< initial modulus [Pa]
   SeriesReading series;
-  double seconds = 0;         ///< run time [s]
+  double seconds = 0; ///< run time [s]
 };
 
 /// Runs the study's recipe at every level (point after point, seed
@@ -180,7 +181,8 @@ std::vector<MemberResult> run_levels(const CheckContext &ctx, const BulkStudy &s
   for (std::size_t i = 0; i < outcome.rows.size(); ++i)
   {
     const std::string seed = levels.seeds > 0 ? ", seed " + std::to_string(levels.first_seed + int(i % per_level)) : "";
-    const SweepRow &row = completed_member(outcome, i, levels.key + " = " + num(levels.values.at(i / per_level)) + seed);
+    const SweepRow &row =
+      completed_member(outcome, i, levels.key + " = " + num(levels.values.at(i / per_level)) + seed);
     results.push_back({row.peak, row.strain, row.modulus, read_series(row.directory, s.fixed_strain), row.seconds});
   }
   return results;
@@ -250,8 +252,8 @@ const std::vector<MemberResult> &seed_ensemble(const CheckContext &ctx)
 /// The seed ensemble's scatter of the peak stress, relative to its mean.
 struct SeedScatter
 {
-  double sd = 0;         ///< standard deviation of one run
-  double single_95 = 0;  ///< 95 % half-width of one run, t(0.975, n - 1) sd
+  double sd = 0;        ///< standard deviation of one run
+  double single_95 = 0; ///< 95 % half-width of one run, t(0.975, n - 1) sd
 };
 
 SeedScatter seed_scatter(const CheckContext &ctx)
@@ -263,10 +265,12 @@ SeedScatter seed_scatter(const CheckContext &ctx)
 /// Why one run's change of the peak stress is held to half the seed scatter.
 std::string peak_change_reason(const std::string &perturbation, const SeedScatter &scatter)
 {
-  return "class D: " + perturbation + " can reorder the cascade of bond breaks at the peak and so select another of "
+  return "class D: " + perturbation +
+         " can reorder the cascade of bond breaks at the peak and so select another of "
          "the sample's failure paths, as another seed would, which one step's worth cannot bound; one run's change "
-         "must stay below half the seed ensemble's relative standard deviation (" + num(scatter.sd) + " over " +
-         std::to_string(ensemble_seeds) + " seeds, V28): added in quadrature it widens the band the result is "
+         "must stay below half the seed ensemble's relative standard deviation (" +
+         num(scatter.sd) + " over " + std::to_string(ensemble_seeds) +
+         " seeds, V28): added in quadrature it widens the band the result is "
          "quoted with by at most 12 %";
 }
 
@@ -305,9 +309,9 @@ CoarseErrorBound coarse_error_bound(const double h[3], const double phi[3])
 struct StepQuantity
 {
   std::string name;
-  std::vector<double> phi;      ///< at safety 0.8, 0.4, 0.2 [Pa]
-  double change_tolerance = 0;  ///< on a relative change between levels
-  double bound_tolerance = 0;   ///< on the relative error bound at 0.8
+  std::vector<double> phi;     ///< at safety 0.8, 0.4, 0.2 [Pa]
+  double change_tolerance = 0; ///< on a relative change between levels
+  double bound_tolerance = 0;  ///< on the relative error bound at 0.8
   ToleranceClass tolerance_class = ToleranceClass::C;
   std::string change_reason, bound_reason;
 };
@@ -318,19 +322,19 @@ void judge_step_quantity(const StepQuantity &q, const std::vector<double> &safet
     change_table(q.name + ": relative change to the next halved safety factor (no order claimed)",
                  "time step safety factor [-] (the step is proportional to it)", safeties, q.phi);
   for (std::size_t k = 0; k < t.rows.size(); ++k)
-    out.metrics.push_back(bound(q.name + ": relative change from safety " + num(safeties[k]) + " to " +
-                                  num(safeties[k + 1]),
-                                t.rows[k].error, q.change_tolerance, false, q.tolerance_class, q.change_reason));
+    out.metrics.push_back(
+      bound(q.name + ": relative change from safety " + num(safeties[k]) + " to " + num(safeties[k + 1]),
+            t.rows[k].error, q.change_tolerance, false, q.tolerance_class, q.change_reason));
   out.tables.push_back(t);
   const double h[3] = {safeties[2], safeties[1], safeties[0]};
   const double fine_to_coarse[3] = {q.phi[2], q.phi[1], q.phi[0]};
   const CoarseErrorBound u = coarse_error_bound(h, fine_to_coarse);
-  out.metrics.push_back(bound(q.name + ": bound on the relative discretisation error at safety " + num(safeties[0]) +
-                                " (the default)",
-                              u.relative, q.bound_tolerance, false, q.tolerance_class, q.bound_reason));
+  out.metrics.push_back(
+    bound(q.name + ": bound on the relative discretisation error at safety " + num(safeties[0]) + " (the default)",
+          u.relative, q.bound_tolerance, false, q.tolerance_class, q.bound_reason));
   out.notes.push_back(q.name + " at safety 0.8, 0.4, 0.2: " + num(q.phi[0]) + ", " + num(q.phi[1]) + ", " +
-                      num(q.phi[2]) + " Pa; observed order " + num(t.last_order()) + "; error bound at 0.8: " +
-                      num(100 * u.relative) + " % (" + u.how + ")");
+                      num(q.phi[2]) + " Pa; observed order " + num(t.last_order()) +
+                      "; error bound at 0.8: " + num(100 * u.relative) + " % (" + u.how + ")");
 }
 } // namespace
 
@@ -345,17 +349,29 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
   const std::string gci = "Roache's GCI (Celik et al. 2008) with the safety factor as the mesh size, safety factor "
                           "1.25 with an observed order, 3 without (about 95 % coverage)";
 
-  StepQuantity peak{"peak stress", peaks(r), 0.5 * scatter.sd, 0.5 * scatter.single_95, ToleranceClass::D,
+  StepQuantity peak{"peak stress",
+                    peaks(r),
+                    0.5 * scatter.sd,
+                    0.5 * scatter.single_95,
+                    ToleranceClass::D,
                     peak_change_reason("halving the step", scatter),
-                    gci + ", for one run; held to half the seed ensemble's 95 % half-width of one run at the same "
-                      "coverage (t(0.975, n - 1) sd / mean = " + num(scatter.single_95) + ", V28): added in "
+                    gci +
+                      ", for one run; held to half the seed ensemble's 95 % half-width of one run at the same "
+                      "coverage (t(0.975, n - 1) sd / mean = " +
+                      num(scatter.single_95) +
+                      ", V28): added in "
                       "quadrature it widens the band by at most 12 %"};
   const std::string at = "stress at " + num(100 * s.fixed_strain) + " % strain";
   const double one_step = step_stress / std::abs(coarsest.series.stress_at_fixed);
-  StepQuantity fixed{at, stresses_at_fixed(r), one_step, one_step, ToleranceClass::C,
+  StepQuantity fixed{at,
+                     stresses_at_fixed(r),
+                     one_step,
+                     one_step,
+                     ToleranceClass::C,
                      "class C: early in the loading, before the cascade, a bond break or contact change falls "
                      "inside a step; the change must stay within one step's worth at safety 0.8, the initial "
-                     "modulus times one step's strain (" + num(step_stress) + " Pa)",
+                     "modulus times one step's strain (" +
+                       num(step_stress) + " Pa)",
                      gci + "; held to one step's worth at safety 0.8 (" + num(step_stress) + " Pa)"};
   CheckOutcome out;
   std::vector<Curve> curves;
@@ -403,9 +419,8 @@ CheckOutcome check_loading_rate(const CheckContext &ctx)
     "the order of the inertial number I, which demvv calls quasi-static below 1e-3; before the cascade the stress "
     "is smooth in the speed, so a halving must move it by less than that"));
   out.metrics.push_back(bound(
-    at + ": change at the slowest halving / change at the one before", fixed_table.rows.back().error /
-      fixed_table.rows.front().error,
-    1, false, ToleranceClass::B,
+    at + ": change at the slowest halving / change at the one before",
+    fixed_table.rows.back().error / fixed_table.rows.front().error, 1, false, ToleranceClass::B,
     "converging to the quasi-static limit: the inertial part of the stress vanishes with the speed, so each halving "
     "must change it less than the one before (the peak's changes are reported, not judged so: a reordered cascade "
     "moves the peak by more than the inertial part)"));
@@ -419,10 +434,10 @@ CheckOutcome check_loading_rate(const CheckContext &ctx)
   out.notes.push_back(s.description + "; run time of the three members " + num(total_seconds(r)) + " s");
   Curve c = curve("peak stress", speeds, peaks(r), CurveStyle::markers_and_line);
   c.y_scale = 1e-6;
-  Figure f = make_figure("loading_rate", "Peak stress against the platen speed", "platen speed [m/s]",
-                         "peak stress [MPa]", {c},
-                         "The same bonded uniaxial compression with the top platen at v, v/2 and v/4; the "
-                         "quasi-static limit is reached when halving the speed no longer moves the peak.");
+  Figure f =
+    make_figure("loading_rate", "Peak stress against the platen speed", "platen speed [m/s]", "peak stress [MPa]", {c},
+                "The same bonded uniaxial compression with the top platen at v, v/2 and v/4; the "
+                "quasi-static limit is reached when halving the speed no longer moves the peak.");
   f.log_x = true;
   out.figures.push_back(f);
   return out;
@@ -443,38 +458,37 @@ CheckOutcome check_seed_ensemble(const CheckContext &ctx)
   for (const MemberResult &m : r)
     latest = std::max(latest, m.strain_at_peak / m.series.final_strain);
   CheckOutcome out;
-  out.metrics.push_back(bound(
-    "largest strain at the peak / final strain over the seeds", latest, 0.9, false, ToleranceClass::D,
-    "each run must pass its peak: the stress of a bonded sample falls and rises again after breaks, so a peak in "
-    "the last tenth of the loading may be cut off by the end of the run, which biases the ensemble low"));
-  out.metrics.push_back(bound(
-    "peak stress: 95 % half-width over " + std::to_string(ensemble_seeds) + " seeds / mean", all.ci95 / std::abs(all.mean),
-    0.1, false, ToleranceClass::D,
-    "class D: a result is quoted as mean +- 95 % Student-t half-width over >= 5 seeds; the ensemble must resolve "
-    "10 % (the standard uncertainty V24-V25 assume for the experiments' law), or more seeds are needed"));
-  out.metrics.push_back(bound(
-    "peak stress: |mean of seeds 1-5 - mean of seeds 6-10| / (2 sqrt(se1^2 + se2^2))",
-    std::abs(first.mean - second.mean) / (2 * std::hypot(first.se, second.se)), 1, false, ToleranceClass::D,
-    "two disjoint sets of independent samples estimate the same mean: their difference stays within twice its "
-    "standard uncertainty (about 95 %); it does not when seeds are not independent (identical members: se = 0, "
-    "NaN) or results are not reproducible"));
+  out.metrics.push_back(
+    bound("largest strain at the peak / final strain over the seeds", latest, 0.9, false, ToleranceClass::D,
+          "each run must pass its peak: the stress of a bonded sample falls and rises again after breaks, so a peak in "
+          "the last tenth of the loading may be cut off by the end of the run, which biases the ensemble low"));
+  out.metrics.push_back(
+    bound("peak stress: 95 % half-width over " + std::to_string(ensemble_seeds) + " seeds / mean",
+          all.ci95 / std::abs(all.mean), 0.1, false, ToleranceClass::D,
+          "class D: a result is quoted as mean +- 95 % Student-t half-width over >= 5 seeds; the ensemble must resolve "
+          "10 % (the standard uncertainty V24-V25 assume for the experiments' law), or more seeds are needed"));
+  out.metrics.push_back(
+    bound("peak stress: |mean of seeds 1-5 - mean of seeds 6-10| / (2 sqrt(se1^2 + se2^2))",
+          std::abs(first.mean - second.mean) / (2 * std::hypot(first.se, second.se)), 1, false, ToleranceClass::D,
+          "two disjoint sets of independent samples estimate the same mean: their difference stays within twice its "
+          "standard uncertainty (about 95 %); it does not when seeds are not independent (identical members: se = 0, "
+          "NaN) or results are not reproducible"));
   struct Quantity
   {
     std::string name;
     std::string unit;
     double (*of)(const MemberResult &);
   };
-  for (const Quantity &q :
-       {Quantity{"peak stress", "Pa", peak_of},
-        Quantity{"strain at the peak", "-", [](const MemberResult &m) { return m.strain_at_peak; }},
-        Quantity{"initial modulus", "Pa", [](const MemberResult &m) { return m.modulus; }}})
+  for (const Quantity &q : {Quantity{"peak stress", "Pa", peak_of},
+                            Quantity{"strain at the peak", "-", [](const MemberResult &m) { return m.strain_at_peak; }},
+                            Quantity{"initial modulus", "Pa", [](const MemberResult &m) { return m.modulus; }}})
   {
     const EnsembleStatistics st = ensemble_statistics(values_of(r, q.of));
     out.notes.push_back(q.name + ": " + num(st.mean) + " +- " + num(st.ci95) + " " + q.unit + " (95 %, sd " +
                         num(st.sd) + " " + q.unit + ", " + std::to_string(st.n) + " seeds)");
   }
-  out.notes.push_back("peak stress, seeds 1-5: " + num(first.mean) + " +- " + num(first.ci95) + " Pa; seeds 6-10: " +
-                      num(second.mean) + " +- " + num(second.ci95) + " Pa (95 %)");
+  out.notes.push_back("peak stress, seeds 1-5: " + num(first.mean) + " +- " + num(first.ci95) +
+                      " Pa; seeds 6-10: " + num(second.mean) + " +- " + num(second.ci95) + " Pa (95 %)");
   out.notes.push_back(s.description + "; run time of the " + std::to_string(ensemble_seeds) + " members " +
                       num(total_seconds(r)) + " s");
 
@@ -500,4 +514,4 @@ CheckOutcome check_seed_ensemble(const CheckContext &ctx)
                                     "disjoint halves that must agree."));
   return out;
 }
-} // namespace verify
+} // namespace demvv

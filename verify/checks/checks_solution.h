@@ -7,9 +7,9 @@
 
 #include "verify/checks/check.h"
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_time_step_safety(const CheckContext &ctx);
 CheckOutcome check_loading_rate(const CheckContext &ctx);
 CheckOutcome check_seed_ensemble(const CheckContext &ctx);
-} // namespace verify
+} // namespace demvv

@@ -1,17 +1,19 @@
 #include "verify/checks/checks_support.h"
+#include "app/io/text.h"
+#include "app/kinds/deck_kinds.h"
 
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
-namespace verify
+namespace demvv
 {
 Deck load_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides)
 {
-  return Deck::from_file(ctx.cases_dir + "/" + name + "/case.prm", overrides);
+  return Deck::from_file(deck_kinds(), ctx.cases_dir + "/" + name + "/case.prm", overrides);
 }
 
 RunOptions run_options(const CheckContext &ctx)
@@ -42,7 +44,6 @@ double first_crossing(const std::vector<double> &time, const std::vector<double>
       return time[k - 1] + (level - values[k - 1]) / (values[k] - values[k - 1]) * (time[k] - time[k - 1]);
   return std::nan("");
 }
-
 
 ScratchDirectory::ScratchDirectory()
 {
@@ -89,11 +90,5 @@ const SweepRow &completed_member(const SweepOutcome &outcome, std::size_t index,
   return row;
 }
 
-std::string num(double v)
-{
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
-} // namespace verify
+std::string num(double v) { return format_number(v, 6); }
+} // namespace demvv

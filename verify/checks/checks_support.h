@@ -1,13 +1,13 @@
 // Helpers shared by the check implementations (checks_*.cpp).
 #pragma once
 
-#include "verify/run/analysis.h"
+#include "app/run/analysis.h"
 
+#include "app/decks/deck.h"
+#include "app/io/series.h"
+#include "app/kinds/scene.h"
+#include "app/studies/sweep.h"
 #include "verify/checks/check.h"
-#include "verify/cli/sweep.h"
-#include "verify/decks/deck.h"
-#include "verify/kinds/scene.h"
-#include "verify/io/series.h"
 
 #include "dem/simulation.h"
 #include "dem/small_systems.h"
@@ -15,11 +15,10 @@
 #include <string>
 #include <vector>
 
-namespace verify
+namespace demvv
 {
 /// Loads cases/<name>/case.prm with overrides and runs it in memory.
-SceneResult run_case(const CheckContext &ctx, const std::string &name,
-                     const std::vector<std::string> &overrides = {});
+SceneResult run_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides = {});
 /// Returns r, or throws (failing the check) if the run faulted or wrote nothing.
 SceneResult completed(const std::string &name, SceneResult r);
 Deck load_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides = {});
@@ -60,10 +59,10 @@ SweepOutcome run_sweep_in(const CheckContext &ctx, const ScratchDirectory &scrat
 /// when that member did not complete.
 const SweepRow &completed_member(const SweepOutcome &outcome, std::size_t index, const std::string &what);
 
-/// Formats a number for notes.
+/// A number in a check's notes: format_number at six significant digits.
 std::string num(double v);
 
 /// Small systems in a line or three (dem/small_systems.h).
 using dem::small_systems::ball;
 using dem::small_systems::undamped;
-} // namespace verify
+} // namespace demvv

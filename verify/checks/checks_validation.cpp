@@ -24,7 +24,7 @@
 // only, a prediction).  Each comparison error E = S - D is judged against
 // the ASME V&V 20 budget u_val = sqrt(u_num^2 + u_input^2 + u_D^2 + u_S^2):
 // u_num the time-step study's standard uncertainty for the sample
-// (verify/run/numerical_uncertainty.h; "not estimated" on the quick
+// (app/run/numerical_uncertainty.h; "not estimated" on the quick
 // lattice), u_input the fitted bond strength's standard error through the
 // model's sensitivity (the calibration's slope), u_D the law's assumed
 // 10 %, u_S the seed-ensemble standard error of the mean: the model error
@@ -38,13 +38,14 @@
 // minute); --full on the prepared 1000-ball sample of chapter 7 at the
 // thesis's 0.5 1/s (about 40 minutes on 2 cores).
 #include "verify/checks/checks_validation.h"
+#include "app/kinds/deck_kinds.h"
 
+#include "app/decks/deck.h"
+#include "app/io/output.h"
+#include "app/run/numerical_uncertainty.h"
+#include "app/studies/calibrate.h"
+#include "app/studies/sweep.h"
 #include "verify/checks/checks_support.h"
-#include "verify/cli/calibrate.h"
-#include "verify/cli/sweep.h"
-#include "verify/decks/deck.h"
-#include "verify/io/output.h"
-#include "verify/run/numerical_uncertainty.h"
 
 #include "dem/rate_scaling.h"
 
@@ -59,7 +60,7 @@
 #include <string>
 #include <vector>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
@@ -78,13 +79,13 @@ struct Condition
   double rate;        ///< 1/s
 };
 
-std::string condition_name(const Condition &c)
-{
-  return num(c.temperature - 273) + " C, " + num(c.rate) + " 1/s";
-}
+std::string condition_name(const Condition &c) { return num(c.temperature - 273) + " C, " + num(c.rate) + " 1/s"; }
 
 double compensated(const Condition &c) { return dem::RateLaw{}.compensated_rate(c.rate, c.temperature); }
-double law_peak(const Condition &c) { return law_reference_stress * dem::RateLaw{}.strength_factor(c.rate, c.temperature); }
+double law_peak(const Condition &c)
+{
+  return law_reference_stress * dem::RateLaw{}.strength_factor(c.rate, c.temperature);
+}
 
 const Condition calibration_condition{283, 0.1};
 
@@ -192,7 +193,8 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
   CheckOutcome out;
   const double mean = number_at(t, "fitted_mean"), se = number_at(t, "standard_error_of_mean");
   out.metrics.push_back(bound("converged (1) or not (0)", c.value("status", "") == "converged" ? 1 : 0, 1, true,
-                              ToleranceClass::D, "the fit must end by meeting its target, not by running out of "
+                              ToleranceClass::D,
+                              "the fit must end by meeting its target, not by running out of "
                               "iterations"));
   out.metrics.push_back(bound(
     "peak stress at 10 C, 0.1 1/s: |mean over seeds - 10.3 MPa| / max(its standard error, 0.5 % of 10.3 MPa)",
@@ -204,14 +206,14 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
                               "the fit is determined: the peak stress moves with the strength well above the seed "
                               "noise and the law's assumed 10 % scatter"));
   const double value = number_at(p, "value");
-  out.notes.push_back("bond strength (normal = shear) fitted at 10 C, 0.1 1/s: " + num(value) + " N +- " +
-                      num(number_at(p, "standard_error")) + " N (seeds alone: +- " +
-                      num(number_at(p, "standard_error_seeds")) + " N), from a start of " + num(strength_start(ctx.quick)) +
-                      " N (" + num(100 * std::abs(strength_start(ctx.quick) / value - 1)) + " % off) in " +
-                      std::to_string(c.value("iterations", 0)) + " iterations, " +
-                      std::to_string(c.value("evaluations", 0)) + " evaluations of " +
-                      std::to_string(c.value("seeds", 0)) + " seeds; peak stress " + num(mean / 1e6) + " +- " +
-                      num(se / 1e6) + " MPa against 10.3 MPa; " + c.value("message", std::string()));
+  out.notes.push_back(
+    "bond strength (normal = shear) fitted at 10 C, 0.1 1/s: " + num(value) + " N +- " +
+    num(number_at(p, "standard_error")) + " N (seeds alone: +- " + num(number_at(p, "standard_error_seeds")) +
+    " N), from a start of " + num(strength_start(ctx.quick)) + " N (" +
+    num(100 * std::abs(strength_start(ctx.quick) / value - 1)) + " % off) in " +
+    std::to_string(c.value("iterations", 0)) + " iterations, " + std::to_string(c.value("evaluations", 0)) +
+    " evaluations of " + std::to_string(c.value("seeds", 0)) + " seeds; peak stress " + num(mean / 1e6) + " +- " +
+    num(se / 1e6) + " MPa against 10.3 MPa; " + c.value("message", std::string()));
   out.notes.push_back(std::string(ctx.quick ? "--quick: a 54-ball lattice sample at 2.5 1/s (the study's "
                                               "machinery, not the thesis's sample)"
                                             : "--full: the prepared 1000-ball sample of chapter 7") +
@@ -262,7 +264,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
     (slopes.size() == 1 && slopes.at(0).is_number() ? slopes.at(0).get<double>() : std::nan("")) /
     number_at(target, "fitted_mean");
   const double input_relative = std::abs(elasticity) * number_at(c.at("parameters").at(0), "relative_standard_error");
-  const double safety = Deck::from_file(s.deck, s.sample).real("motion/time step safety");
+  const double safety = Deck::from_file(deck_kinds(), s.deck, s.sample).real("motion/time step safety");
   std::vector<std::vector<double>> x(2), y(2), bar(2), strain(2), strain_bar(2), modulus(2), modulus_bar(2);
   std::vector<double> budget_x;
   std::vector<std::vector<double>> budget(4);
@@ -286,9 +288,9 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
       const double law = law_peak(conditions[k]);
       const nlohmann::json numerical = numerical_time_step_uncertainty(balls, safety);
       const bool num_known = numerical.value("estimated", false);
-      const ValidationBudget u{
-        num_known ? mean * numerical.at("peak_stress_pa").at("u_num_relative").get<double>() : 0.0,
-        mean * input_relative, law_relative_uncertainty * law, st.se};
+      const ValidationBudget u{num_known ? mean * numerical.at("peak_stress_pa").at("u_num_relative").get<double>()
+                                         : 0.0,
+                               mean * input_relative, law_relative_uncertainty * law, st.se};
       const double error = mean - law;
       out.metrics.push_back(bound(condition_name(conditions[k]) + " (rate_T " + num(compensated(conditions[k])) +
                                     " 1/s), " + labels[g] + ": |S - D| / u_val",
@@ -299,12 +301,13 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                                   "sensitivity, u_D the law's assumed 10 %, u_S the seed-ensemble standard error "
                                   "of the mean; the model error is resolved (the prediction fails) when |E| > 2 "
                                   "u_val"));
-      out.notes.push_back(condition_name(conditions[k]) + ", " + labels[g] + ": S = " + num(mean / 1e6) +
-                          " MPa (" + std::to_string(s.seeds) + " seeds), law D = " + num(law / 1e6) + " MPa, E = " +
-                          num(error / 1e6) + " MPa (" + num(100 * error / law) + " %); u_num " +
-                          (num_known ? num(u.num / 1e6) + " MPa" : "not estimated (" + numerical.value("why", "") + ")") +
-                          ", u_input " + num(u.input / 1e6) + " MPa, u_D " + num(u.d / 1e6) + " MPa, u_S " +
-                          num(u.s / 1e6) + " MPa, u_val " + num(u.val() / 1e6) + " MPa");
+      out.notes.push_back(
+        condition_name(conditions[k]) + ", " + labels[g] + ": S = " + num(mean / 1e6) + " MPa (" +
+        std::to_string(s.seeds) + " seeds), law D = " + num(law / 1e6) + " MPa, E = " + num(error / 1e6) + " MPa (" +
+        num(100 * error / law) + " %); u_num " +
+        (num_known ? num(u.num / 1e6) + " MPa" : "not estimated (" + numerical.value("why", "") + ")") + ", u_input " +
+        num(u.input / 1e6) + " MPa, u_D " + num(u.d / 1e6) + " MPa, u_S " + num(u.s / 1e6) + " MPa, u_val " +
+        num(u.val() / 1e6) + " MPa");
       x[g].push_back(compensated(conditions[k]));
       y[g].push_back(mean);
       bar[g].push_back(st.ci95);
@@ -333,11 +336,11 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
     }
     double c0 = 0, c1 = 0, cov00 = 0, cov01 = 0, cov11 = 0, chisq = 0;
     gsl_fit_wlinear(lx.data(), 1, w.data(), 1, ly.data(), 1, lx.size(), &c0, &c1, &cov00, &cov01, &cov11, &chisq);
-    out.metrics.push_back(bound("slope of ln(peak stress) on ln(rate_T), " + labels[g] +
-                                  ": |slope - 0.29| / its standard error",
-                                std::abs(c1 - law_exponent) / std::sqrt(cov11), 2, false, ToleranceClass::D,
-                                "the law's exponent n = 0.29 against the slope of the predictions, weighted by each "
-                                "point's relative uncertainty (seeds and the law's 10 %)"));
+    out.metrics.push_back(
+      bound("slope of ln(peak stress) on ln(rate_T), " + labels[g] + ": |slope - 0.29| / its standard error",
+            std::abs(c1 - law_exponent) / std::sqrt(cov11), 2, false, ToleranceClass::D,
+            "the law's exponent n = 0.29 against the slope of the predictions, weighted by each "
+            "point's relative uncertainty (seeds and the law's 10 %)"));
     out.notes.push_back(labels[g] + ": slope " + num(c1) + " +- " + num(std::sqrt(cov11)) + " against n = 0.29");
   }
 
@@ -356,12 +359,11 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                                 "the peak is about rate-independent, so a slope resolved above twice its standard "
                                 "error is a model error"));
     const Slope modulus_slope = weighted_slope(x[g], modulus[g], modulus_bar[g], true);
-    out.metrics.push_back(bound("slope of ln(initial modulus) on ln(rate_T), " + labels[g] +
-                                  ": |slope - 0.29| / its standard error",
-                                std::abs(modulus_slope.value - law_exponent) / modulus_slope.se, 2, false,
-                                ToleranceClass::D,
-                                "validation of a quantity the calibration did not set: the experiments' initial "
-                                "stiffness follows the peak's exponent 0.29 (built in where stiffnesses are scaled)"));
+    out.metrics.push_back(
+      bound("slope of ln(initial modulus) on ln(rate_T), " + labels[g] + ": |slope - 0.29| / its standard error",
+            std::abs(modulus_slope.value - law_exponent) / modulus_slope.se, 2, false, ToleranceClass::D,
+            "validation of a quantity the calibration did not set: the experiments' initial "
+            "stiffness follows the peak's exponent 0.29 (built in where stiffnesses are scaled)"));
     out.notes.push_back(labels[g] + ": strain at peak slope " + num(strain_slope.value) + " +- " +
                         num(strain_slope.se) + " per unit ln(rate_T); initial modulus slope " +
                         num(modulus_slope.value) + " +- " + num(modulus_slope.se) + " against 0.29");
@@ -416,4 +418,4 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   out.figures.push_back(b);
   return out;
 }
-} // namespace verify
+} // namespace demvv

@@ -6,8 +6,8 @@
 
 #include "verify/checks/check.h"
 
-namespace verify
+namespace demvv
 {
 CheckOutcome check_table_7_4_calibration(const CheckContext &ctx);
 CheckOutcome check_table_7_4_validation(const CheckContext &ctx);
-} // namespace verify
+} // namespace demvv

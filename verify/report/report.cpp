@@ -1,19 +1,63 @@
 #include "verify/report/report.h"
+#include "app/io/text.h"
 
-#include "verify/io/output.h"
+#include "app/io/output.h"
 
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 
-namespace verify
+namespace demvv
 {
-std::string report_number(double v)
+std::string report_number(double v) { return format_number(v, 3); }
+
+Headline headline(const std::vector<CheckRecord> &records)
 {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
+  Headline h;
+  for (Category c :
+       {Category::code_verification, Category::solution_verification, Category::calibration, Category::validation})
+  {
+    Headline::Tally t{c};
+    for (const CheckRecord &r : records)
+      if (r.check->category == c)
+      {
+        ++t.run;
+        t.passed += r.pass() ? 1 : 0;
+        if (!r.pass())
+          ++(c == Category::validation && r.error.empty() ? h.model_errors : h.code_failures);
+      }
+    if (t.run > 0)
+      h.categories.push_back(t);
+  }
+  return h;
+}
+
+std::string Headline::text() const
+{
+  std::string line;
+  for (const Tally &t : categories)
+  {
+    line += (line.empty() ? "" : "; ") + std::string(category_name(t.category)) + " " + std::to_string(t.passed) + "/" +
+            std::to_string(t.run) + " pass";
+    if (t.category == Category::validation && model_errors > 0)
+      line += " (" + std::to_string(model_errors) +
+              " model error found: a finding about the model, not a failure of the code)";
+  }
+  if (code_failures > 0)
+    line += "; " + std::to_string(code_failures) + " FAIL (a failure of the code or of a solution)";
+  return line;
+}
+
+std::string banner(const nlohmann::json &provenance)
+{
+  const auto field = [&](const char *key) { return provenance.value(key, std::string("unrecorded")); };
+  const bool quick = provenance.value("mode", "quick") == "quick";
+  return std::string(quick ? "Quick mode: fewer levels and shorter runs; the bulk checks run on small lattices, not "
+                             "on the thesis's prepared samples (demvv verify --full runs them at full size)."
+                           : "Full mode: every level and the bulk checks on the prepared samples.") +
+         " Run " + field("started_utc") + ", commit " + field("git_sha") + ", on " + field("host") + " (" +
+         field("cpu_model") + ").";
 }
 
 std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose)
@@ -37,8 +81,8 @@ std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (verbose)
-      std::cerr << (r.pass() ? "PASS " : "FAIL ") << c.id << "  " << c.title << "  (" << report_number(r.seconds) << " s)"
-                << (r.error.empty() ? "" : "  error: " + r.error) << "\n";
+      std::cerr << (r.pass() ? "PASS " : "FAIL ") << c.id << "  " << c.title << "  (" << report_number(r.seconds)
+                << " s)" << (r.error.empty() ? "" : "  error: " + r.error) << "\n";
     out.push_back(std::move(r));
   }
   return out;
@@ -65,8 +109,11 @@ nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohma
       nlohmann::json rows = nlohmann::json::array();
       for (const ConvergenceRow &row : t.rows)
         rows.push_back({{"h", row.h}, {"error", row.error}, {"observed_order", row.order}});
-      tables.push_back({{"title", t.title}, {"h", t.h_name}, {"error", t.error_name},
-                        {"expected_order", t.expected_order}, {"levels", rows}});
+      tables.push_back({{"title", t.title},
+                        {"h", t.h_name},
+                        {"error", t.error_name},
+                        {"expected_order", t.expected_order},
+                        {"levels", rows}});
     }
     nlohmann::json classes = nlohmann::json::array();
     for (ToleranceClass t : r.check->tolerance_classes)
@@ -98,8 +145,9 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
   for (const CheckRecord &r : records)
     failed += r.pass() ? 0 : 1;
   o << "# demvv verification report\n\n"
-    << records.size() - failed << " of " << records.size() << " checks pass"
-    << (failed ? " — **" + std::to_string(failed) + " FAIL**" : "") << ".\n\n"
+    << "**" << headline(records).text() << "** (" << records.size() - failed << " of " << records.size()
+    << " checks pass).\n\n"
+    << banner(provenance) << "\n\n"
     << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
        "verification* (how accurate is this solution), *calibration* (parameters fitted to data) and "
        "*validation* (is it the right equation). Each metric has a tolerance class: A algebraic (round-off), "
@@ -147,4 +195,4 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
   o << "\n## Provenance\n\n```json\n" << json_text(provenance, 2) << "\n```\n";
   return o.str();
 }
-} // namespace verify
+} // namespace demvv

@@ -17,8 +17,8 @@
 // provenance.  report.json holds the same, per check and per metric.
 #pragma once
 
+#include "app/plot/gnuplot.h"
 #include "verify/checks/check.h"
-#include "verify/plot/gnuplot.h"
 
 #include <nlohmann/json.hpp>
 
@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace verify
+namespace demvv
 {
 struct CheckRecord
 {
@@ -37,10 +37,37 @@ struct CheckRecord
   bool pass() const { return error.empty() && outcome.pass(); }
 };
 
+/// The verdicts of a verification by V&V category (thesis §2.5): checks
+/// passed of those run per category, validation checks that found a model
+/// error (a finding about the model, reported with its verdict, not a
+/// failure of the code) and checks that failed otherwise (a check that
+/// stopped included).  The headline of every report and of `demvv verify`'s
+/// last line, and its exit code.
+struct Headline
+{
+  struct Tally
+  {
+    Category category;
+    std::size_t passed = 0, run = 0;
+  };
+  std::vector<Tally> categories; ///< in the order of §2.5, those run only
+  std::size_t model_errors = 0;
+  std::size_t code_failures = 0;
+
+  /// One line: "code verification 14/14 pass; ...; validation 3/4 pass (1 model
+  /// error found: ...)".
+  std::string text() const;
+};
+Headline headline(const std::vector<CheckRecord> &records);
+
+/// The line under the headline: the mode (quick: what it leaves out), the
+/// date, the commit, the host and its CPU, from the report's provenance.
+std::string banner(const nlohmann::json &provenance);
+
 nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
 std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
 
-/// A number as every report prints it: three significant digits (%.3g).
+/// A number as every report prints it: format_number at three significant digits.
 std::string report_number(double v);
 
 /// The figures of one check in report.html (names start with the check's id).
@@ -54,4 +81,4 @@ void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json
 
 /// Runs the checks whose id or title contains `only` (all if empty).
 std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose);
-} // namespace verify
+} // namespace demvv

@@ -1,9 +1,9 @@
 #include "verify/report/report.h"
 
+#include "app/io/output.h"
+#include "app/plot/gnuplot.h"
+#include "app/plot/studies.h"
 #include "verify/checks/catalogue.h"
-#include "verify/io/output.h"
-#include "verify/plot/gnuplot.h"
-#include "verify/plot/studies.h"
 
 #include <algorithm>
 #include <cctype>
@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace verify
+namespace demvv
 {
 namespace
 {
@@ -21,11 +21,20 @@ std::string html_escaped(std::string_view text)
   for (char c : text)
     switch (c)
     {
-    case '&': out += "&amp;"; break;
-    case '<': out += "&lt;"; break;
-    case '>': out += "&gt;"; break;
-    case '"': out += "&quot;"; break;
-    default: out += c;
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    default:
+      out += c;
     }
   return out;
 }
@@ -111,7 +120,10 @@ dl.facts dd { margin-left: 10em; }
 pre { background: #f7f7f7; padding: 0.5em; overflow-x: auto; font-size: 0.8em; }
 )";
 
-std::string verdict(bool pass) { return pass ? "<span class=\"pass\">PASS</span>" : "<span class=\"fail\">FAIL</span>"; }
+std::string verdict(bool pass)
+{
+  return pass ? "<span class=\"pass\">PASS</span>" : "<span class=\"fail\">FAIL</span>";
+}
 } // namespace
 
 std::vector<Figure> check_figures(const CheckRecord &r)
@@ -211,8 +223,8 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
       const Metric &m = r.outcome.metrics[k];
       body << "<tr><td>" << k + 1 << "</td><td>" << html_escaped(m.name) << "</td><td>"
            << tolerance_class_letter(m.tolerance_class) << "</td><td>" << report_number(m.value) << "</td><td>"
-           << (m.at_least ? "&ge; " : "&le; ") << report_number(m.tolerance) << "</td><td>" << verdict(m.pass) << "</td><td>"
-           << html_escaped(m.reason) << "</td></tr>\n";
+           << (m.at_least ? "&ge; " : "&le; ") << report_number(m.tolerance) << "</td><td>" << verdict(m.pass)
+           << "</td><td>" << html_escaped(m.reason) << "</td></tr>\n";
     }
     body << "</table>\n";
     if (!r.outcome.notes.empty())
@@ -225,12 +237,15 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
     body << "</section>\n";
   }
 
+  const Headline head = headline(records);
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<title>demvv verification report</title>\n<style>" << style_sheet << "</style>\n</head>\n"
-    << "<body data-figures-missing=\"" << missing << "\">\n<h1>demvv verification report</h1>\n<p>"
-    << records.size() - failed << " of " << records.size() << " checks pass"
-    << (failed ? " — <span class=\"fail\">" + std::to_string(failed) + " FAIL</span>" : std::string()) << ".</p>\n"
+    << "<body data-figures-missing=\"" << missing
+    << "\">\n<h1>demvv verification report</h1>\n<p id=\"headline\" class=\"" << (head.code_failures ? "fail" : "pass")
+    << "\"><b>" << html_escaped(head.text()) << "</b> (" << records.size() - failed << " of " << records.size()
+    << " checks pass).</p>\n"
+    << "<p id=\"banner\">" << html_escaped(banner(provenance)) << "</p>\n"
     << "<h2>Verdicts</h2>\n<table>\n<tr><th>id</th><th>check</th><th>category</th><th>classes</th><th>verdict</th>"
        "<th>run time [s]</th></tr>\n";
   for (const CheckRecord &r : records)
@@ -239,13 +254,14 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
       << html_escaped(tolerance_class_list(r.check->tolerance_classes)) << "</td><td>" << verdict(r.pass())
       << "</td><td>" << report_number(r.seconds) << "</td></tr>\n";
   o << "</table>\n<h2>Categories and tolerance classes</h2>\n<dl>\n";
-  for (Category c : {Category::code_verification, Category::solution_verification, Category::calibration,
-                     Category::validation})
-    o << "<dt><b>" << html_escaped(category_name(c)) << "</b></dt><dd>" << html_escaped(category_definition(c)) << "</dd>\n";
+  for (Category c :
+       {Category::code_verification, Category::solution_verification, Category::calibration, Category::validation})
+    o << "<dt><b>" << html_escaped(category_name(c)) << "</b></dt><dd>" << html_escaped(category_definition(c))
+      << "</dd>\n";
   for (ToleranceClass t : {ToleranceClass::A, ToleranceClass::B, ToleranceClass::C, ToleranceClass::D})
-    o << "<dt><b>class " << tolerance_class_letter(t) << " (" << html_escaped(tolerance_class_name(t)) << ")</b></dt><dd>"
-      << html_escaped(tolerance_class_limit(t)) << " " << html_escaped(tolerance_class_rule(t)) << " "
-      << html_escaped(tolerance_class_reasoning(t)) << "</dd>\n";
+    o << "<dt><b>class " << tolerance_class_letter(t) << " (" << html_escaped(tolerance_class_name(t))
+      << ")</b></dt><dd>" << html_escaped(tolerance_class_limit(t)) << " " << html_escaped(tolerance_class_rule(t))
+      << " " << html_escaped(tolerance_class_reasoning(t)) << "</dd>\n";
   o << "</dl>\n<h2>Checks</h2>\n"
     << body.str() << "<h2>Provenance</h2>\n<pre>" << html_escaped(json_text(provenance, 2)) << "</pre>\n<script>"
     << figure_check_script << "</script>\n</body>\n</html>\n";
@@ -270,4 +286,4 @@ void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json
     drawn[d.name] = std::move(d);
   write_atomically(out_dir + "/report.html", report_html(records, figures, provenance, drawn));
 }
-} // namespace verify
+} // namespace demvv

@@ -1,0 +1,40 @@
+// Text of inputs, outputs and their errors: the one number format, the one
+// infinity, trimming, and the one-line error every bad input ends in.
+//
+// Every room writes numbers through format_number (decks and their errors
+// with 12 significant digits, CSV tables with 10, reports with 3, gnuplot
+// scripts with 17, which read back bit for bit), so that infinities read
+// "inf" and "-inf" everywhere and no room keeps a formatter of its own.
+// A DeckError is bad input: one line naming the file, the key, the value
+// and what was expected; the command line turns it into exit code 2.
+#pragma once
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace demvv
+{
+/// Bad input: one line, exit code 2.
+class DeckError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The one infinity (open bounds of deck entries, "no limit").
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+/// `v` with `significant` significant digits as printf's %g writes it
+/// ("inf", "-inf", "nan" for the non-finite).
+std::string format_number(double v, int significant = 12);
+
+/// `s` without blanks, tabs and line ends at either end.
+std::string trimmed(std::string_view s);
+
+/// The one-line error for a key of a deck or an input file: "FILE: key
+/// 'KEY' has value 'VALUE': EXPECTED" ("deck" when there is no file).
+[[noreturn]] void fail_key(const std::string &file, const std::string &key, const std::string &value,
+                           const std::string &expected);
+} // namespace demvv

@@ -1,0 +1,20 @@
+// The tables of deck kinds: one whole row per kind (keyword, one-line
+// summary, schema, parse, run, figures, whether it runs on every MPI rank,
+// whether it pauses).  `demvv run`, `demvv defaults`, `demvv plot` and
+// `--help` read deck_kinds(); the deck reader is handed a table and knows
+// no other.  dem_deck_kinds() is its DEM part (scene, prepare, uniaxial),
+// the rows the fuzz targets read decks and run directories with: the same
+// rows, not a copy.
+#pragma once
+
+#include "app/decks/deck.h"
+
+namespace demvv
+{
+/// The DEM kinds (app/kinds/dem_kinds.cpp).
+const DeckKinds &dem_deck_kinds();
+
+/// Every kind: the DEM kinds, then the continuum and micro-macro kinds
+/// (app/kinds/deck_kinds.cpp).
+const DeckKinds &deck_kinds();
+} // namespace demvv

@@ -1,0 +1,71 @@
+// A figure as data: what to draw, not how.
+//
+// A Figure is a titled pair of axes (a right axis when a curve asks for
+// one) holding curves.  A curve takes its points either from memory (a
+// check's measured history and its closed form) or from two columns of a
+// CSV file a run wrote (series.csv), so that a run's figure script reads
+// the run's own data and a user can edit and rerun it.  Values are plotted
+// as x * x_scale, y * y_scale: the files keep SI units, a figure may show
+// strain in % or stress in MPa and says so in its axis label.
+//
+// gnuplot.h turns a Figure into a gnuplot script and an SVG picture.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace demvv
+{
+enum class CurveStyle
+{
+  line,   ///< a solid line: a measured history
+  dashed, ///< a dashed line: a reference (closed form, law, continuum)
+  points, ///< markers only: discrete measurements (levels of a study)
+  markers_and_line,
+};
+
+struct Curve
+{
+  std::string title;
+  CurveStyle style = CurveStyle::line;
+  bool right_axis = false; ///< plotted against the right-hand y axis
+  int colour = 0;          ///< gnuplot's line colour index; 0: the curve's place in the figure
+  int point_type = 7;      ///< gnuplot's marker (7 a filled circle, 5 a filled square)
+
+  /// Points in memory (written beside the script)...
+  std::vector<double> x, y;
+  /// ...with, when given, a half-width for each y (drawn as error bars,
+  /// e.g. a 95 % confidence interval)...
+  std::vector<double> y_error;
+  /// ...or two columns of a CSV file, its path relative to the figure's folder.
+  std::string file, x_column, y_column;
+
+  double x_scale = 1, y_scale = 1;
+};
+
+/// A curve of points held in memory.
+Curve curve(std::string title, std::vector<double> x, std::vector<double> y, CurveStyle style = CurveStyle::line);
+/// A curve read from two columns of a CSV file.
+Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale = 1,
+                   double y_scale = 1, CurveStyle style = CurveStyle::line);
+
+struct Figure
+{
+  std::string name; ///< file stem: NAME.gp, NAME.svg (letters, digits, '_' and '-')
+  std::string title;
+  std::string x_label, y_label, y2_label; ///< with units
+  bool log_x = false, log_y = false;
+  bool equal_axes = false; ///< one unit as long on both axes (a mesh, a sample)
+  bool x_margins = false;  ///< 5 % of the x range free at either end (markers at the ends drawn whole)
+  /// The y axis reaches at least this high (NaN: gnuplot's autoscale alone).
+  double y_top_at_least = std::numeric_limits<double>::quiet_NaN();
+  std::string key = "top left"; ///< gnuplot's key placement
+  std::vector<Curve> curves;
+  std::string caption; ///< one or two sentences under the picture in a report
+};
+
+/// A figure of curves on linear axes.
+Figure make_figure(std::string name, std::string title, std::string x_label, std::string y_label,
+                   std::vector<Curve> curves, std::string caption = "");
+} // namespace demvv

@@ -1,0 +1,327 @@
+#include "app/plot/gnuplot.h"
+#include "app/io/text.h"
+
+#include "app/io/output.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <sstream>
+#include <stdexcept>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace demvv
+{
+Curve curve(std::string title, std::vector<double> x, std::vector<double> y, CurveStyle style)
+{
+  Curve c;
+  c.title = std::move(title);
+  c.x = std::move(x);
+  c.y = std::move(y);
+  c.style = style;
+  return c;
+}
+
+Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale,
+                   double y_scale, CurveStyle style)
+{
+  Curve c;
+  c.title = std::move(title);
+  c.file = std::move(file);
+  c.x_column = std::move(x_column);
+  c.y_column = std::move(y_column);
+  c.x_scale = x_scale;
+  c.y_scale = y_scale;
+  c.style = style;
+  return c;
+}
+
+Figure make_figure(std::string name, std::string title, std::string x_label, std::string y_label,
+                   std::vector<Curve> curves, std::string caption)
+{
+  Figure f;
+  f.name = std::move(name);
+  f.title = std::move(title);
+  f.x_label = std::move(x_label);
+  f.y_label = std::move(y_label);
+  f.curves = std::move(curves);
+  f.caption = std::move(caption);
+  return f;
+}
+
+namespace
+{
+/// Text from a run directory (a title, a column, a file name) made safe
+/// for one line of a script: control characters (a newline would start a
+/// command of its own) become spaces.
+std::string one_line(const std::string &s)
+{
+  std::string out = s;
+  for (char &c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = ' ';
+  return out;
+}
+
+/// A gnuplot single-quoted string ('' stands for one quote inside): inside
+/// single quotes gnuplot substitutes neither `backquoted` commands nor
+/// @macros, and control characters are gone (one_line).
+std::string quoted(const std::string &s)
+{
+  std::string out = "'";
+  for (char c : one_line(s))
+    out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+/// Text for a comment line: gnuplot reads a comment's line too (a trailing
+/// backslash continues it, backquotes are substituted before the `#`), so
+/// only letters, digits and plain punctuation stay.
+std::string comment_text(const std::string &s)
+{
+  std::string out = one_line(s);
+  for (char &c : out)
+    if (c == '`' || c == '\\' || c == '@' || c == '$')
+      c = '_';
+  return out;
+}
+
+/// 17 significant digits: a double read back bit for bit.
+std::string number(double v) { return format_number(v, 17); }
+
+/// gnuplot's `using` item for column `c` (a number or a name) times `scale`.
+std::string using_item(const std::string &c, double scale)
+{
+  const bool numbered = c.find_first_not_of("0123456789") == std::string::npos;
+  if (scale == 1 && numbered)
+    return c;
+  return "(" + (numbered ? "$" + c : "column(" + quoted(c) + ")") + (scale == 1 ? "" : "*" + number(scale)) + ")";
+}
+
+std::string style_clause(CurveStyle s, int colour, int point_type)
+{
+  const std::string lc = " lc " + std::to_string(colour);
+  const std::string pt = " pt " + std::to_string(point_type);
+  switch (s)
+  {
+  case CurveStyle::line:
+    return "with lines lw 2" + lc;
+  case CurveStyle::dashed:
+    return "with lines lw 2 dt 2" + lc;
+  case CurveStyle::points:
+    return "with points" + pt + " ps 0.9" + lc;
+  case CurveStyle::markers_and_line:
+    return "with linespoints lw 2" + pt + " ps 0.9" + lc;
+  }
+  return "with lines";
+}
+
+bool in_memory(const Curve &c) { return c.file.empty(); }
+
+bool plottable(const Figure &f)
+{
+  for (const Curve &c : f.curves)
+    if (!in_memory(c) || !c.x.empty())
+      return true;
+  return false;
+}
+
+/// The last non-empty line of gnuplot's messages, as the reason it failed.
+std::string last_line(const std::string &text)
+{
+  std::istringstream in(text);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r^") != std::string::npos)
+      last = line;
+  return last;
+}
+
+/// Runs `gnuplot NAME.gp` inside `dir`; the empty string on success, else why not.
+std::string run_gnuplot(const std::string &dir, const std::string &name)
+{
+  const std::string svg = dir + "/" + name + ".svg", log = dir + "/" + name + ".log";
+  const std::string script = name + ".gp", log_name = name + ".log";
+  std::remove(svg.c_str());
+  std::remove(log.c_str()); // a link named so is removed, never followed (the child creates it exclusively)
+  // Only async-signal-safe calls between fork and exec: the strings are made before.
+  const pid_t pid = fork();
+  if (pid < 0)
+    return std::string("cannot start gnuplot: ") + std::strerror(errno);
+  if (pid == 0)
+  {
+    if (chdir(dir.c_str()) != 0)
+      _exit(126);
+    const int in = open("/dev/null", O_RDONLY);
+    const int out = open(log_name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
+    if (in < 0 || out < 0)
+      _exit(126);
+    dup2(in, 0);
+    dup2(out, 1);
+    dup2(out, 2);
+    execlp("gnuplot", "gnuplot", script.c_str(), static_cast<char *>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    ;
+  struct stat st
+  {
+  };
+  const std::string messages = stat(log.c_str(), &st) == 0 ? read_file(log) : std::string();
+  const bool written = stat(svg.c_str(), &st) == 0 && st.st_size > 0;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && written)
+  {
+    std::remove(log.c_str());
+    return {};
+  }
+  std::remove(svg.c_str());
+  const std::string why = last_line(messages);
+  return "gnuplot could not draw it" + (why.empty() ? std::string() : ": " + why) + " (messages in " + log + ")";
+}
+} // namespace
+
+std::string gnuplot_script(const Figure &f)
+{
+  std::ostringstream o;
+  o << "# demvv figure " << f.name << ": " << comment_text(f.title) << "\n"
+    << "# Redraw with: gnuplot " << f.name << ".gp (in this folder; it writes " << f.name << ".svg)\n"
+    << "reset\n"
+    << "set terminal svg size 760,460 noenhanced font 'Sans,12' background rgb 'white'\n"
+    << "set encoding utf8\n"
+    << "set output " << quoted(f.name + ".svg") << "\n"
+    << "set datafile separator ','\n"
+    << "set title " << quoted(f.title) << "\n"
+    << "set xlabel " << quoted(f.x_label) << "\n"
+    << "set ylabel " << quoted(f.y_label) << "\n"
+    << "set grid\n"
+    << "set key " << f.key << (f.key == "off" ? "" : " box opaque") << "\n";
+  bool right = false;
+  for (const Curve &c : f.curves)
+    right = right || c.right_axis;
+  if (right)
+    o << "set y2label " << quoted(f.y2_label) << "\nset y2tics\nset ytics nomirror\n";
+  if (f.log_x)
+    o << "set logscale x\n";
+  if (f.log_y)
+    o << "set logscale y\n";
+  if (f.log_x || f.log_y)
+    o << "set format " << (f.log_x ? "x" : "") << (f.log_y ? "y" : "") << " '%g'\n";
+  if (f.x_margins)
+    o << "set offsets graph 0.05, graph 0.05, 0, 0\n";
+  if (f.equal_axes)
+    o << "set size ratio -1\n";
+  if (std::isfinite(f.y_top_at_least))
+    o << "set yrange [*:" << number(f.y_top_at_least) << "<*]\n";
+  o << "plot ";
+  int block = 0, colour = 0;
+  bool first = true;
+  for (const Curve &c : f.curves)
+  {
+    ++colour;
+    if (in_memory(c) && c.x.empty())
+      continue;
+    o << (first ? "" : ", \\\n     ");
+    first = false;
+    const bool bars = in_memory(c) && !c.y_error.empty();
+    if (in_memory(c))
+      o << quoted(f.name + ".csv") << " index " << block++ << " using " << using_item("1", c.x_scale) << ":"
+        << using_item("2", c.y_scale) << (bars ? ":" + using_item("3", c.y_scale) : "");
+    else
+      o << quoted(c.file) << " using " << using_item(c.x_column, c.x_scale) << ":" << using_item(c.y_column, c.y_scale);
+    const int lc = c.colour ? c.colour : colour;
+    o << (c.right_axis ? " axes x1y2 " : " ")
+      << (bars ? "with yerrorbars pt " + std::to_string(c.point_type) + " ps 0.9 lc " + std::to_string(lc)
+               : style_clause(c.style, lc, c.point_type))
+      << " title " << quoted(c.title);
+  }
+  o << "\n";
+  return o.str();
+}
+
+void write_figure_files(const Figure &f, const std::string &dir)
+{
+  std::ostringstream data;
+  bool any = false;
+  for (const Curve &c : f.curves)
+  {
+    if (!in_memory(c) || c.x.empty())
+      continue;
+    data << (any ? "\n\n" : "") << "# " << one_line(c.title) << "\n";
+    any = true;
+    for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k)
+      data << number(c.x[k]) << "," << number(c.y[k])
+           << (c.y_error.empty() ? "" : "," + number(k < c.y_error.size() ? c.y_error[k] : 0.0)) << "\n";
+  }
+  if (any)
+    write_atomically(dir + "/" + f.name + ".csv", data.str());
+  write_atomically(dir + "/" + f.name + ".gp", gnuplot_script(f));
+}
+
+std::string undrawn(const std::vector<DrawnFigure> &figures)
+{
+  std::string text;
+  for (const DrawnFigure &f : figures)
+    if (!f.drawn())
+      text += (text.empty() ? "" : "; ") + f.name + ": " + f.problem;
+  return text;
+}
+
+bool gnuplot_available()
+{
+  const char *path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "/usr/bin:/bin");
+  std::string d;
+  while (std::getline(dirs, d, ':'))
+    if (!d.empty() && access((d + "/gnuplot").c_str(), X_OK) == 0)
+      return true;
+  return false;
+}
+
+std::string figure_name(const std::string &text)
+{
+  static const std::string allowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
+  std::string name = text.substr(0, 100);
+  for (char &c : name)
+    if (allowed.find(c) == std::string::npos)
+      c = '_';
+  return name.empty() ? "figure" : name;
+}
+
+std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const std::string &dir)
+{
+  struct stat st
+  {
+  };
+  if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+    throw OutputError(dir + ": is not a directory (a symbolic link or a file): demvv draws figures only into a "
+                            "directory of its own: expected a plots directory or none (remove it)");
+  make_directories(dir);
+  const bool have_gnuplot = gnuplot_available();
+  std::vector<DrawnFigure> out;
+  for (const Figure &named : figures)
+  {
+    Figure f = named; // its name from a fixed alphabet: it becomes file names and script text
+    f.name = figure_name(named.name);
+    write_figure_files(f, dir);
+    DrawnFigure d;
+    d.name = f.name;
+    if (!plottable(f))
+      d.problem = "no data to draw";
+    else if (!have_gnuplot)
+      d.problem =
+        "gnuplot is not installed (Debian: apt-get install gnuplot-nox); the script " + f.name + ".gp is written";
+    else
+      d.problem = run_gnuplot(dir, f.name);
+    if (d.drawn())
+      d.svg = dir + "/" + f.name + ".svg";
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+} // namespace demvv

@@ -1,0 +1,408 @@
+#include "app/plot/run_figures.h"
+
+#include "app/decks/csv_input.h"
+#include "app/decks/deck.h"
+#include "app/io/input.h"
+#include "app/io/output.h"
+#include "app/plot/studies.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <memory>
+#include <sys/stat.h>
+
+namespace demvv
+{
+namespace
+{
+bool exists(const std::string &path)
+{
+  struct stat st
+  {
+  };
+  return stat(path.c_str(), &st) == 0;
+}
+
+/// A CSV file of the run, read to learn which columns hold data (nan where
+/// the run had no value); figures refer to it from RUN_DIR/plots as
+/// `from_plots`.
+struct RunTable
+{
+  std::unique_ptr<CsvTable> table;
+  std::string from_plots;
+
+  RunTable(const std::string &run_dir, const std::string &file) : from_plots("../" + file)
+  {
+    if (exists(run_dir + "/" + file))
+      table = std::make_unique<CsvTable>(CsvTable::read(run_dir + "/" + file, CsvTable::Values::any_number));
+  }
+  bool usable() const { return table && table->rows() > 0; }
+  bool has(const std::string &column) const { return usable() && table->has(column); }
+  /// A column with at least one non-zero finite value.
+  bool carries(const std::string &column) const
+  {
+    if (!has(column))
+      return false;
+    for (std::size_t r = 0; r < table->rows(); ++r)
+    {
+      const double v = table->get(r, column);
+      if (v != 0 && std::isfinite(v))
+        return true;
+    }
+    return false;
+  }
+};
+
+struct Line
+{
+  std::string title, column;
+  double scale = 1;
+  CurveStyle style = CurveStyle::line;
+  bool right_axis = false;
+};
+
+struct Axes
+{
+  std::string name, title, x_label, y_label;
+  std::string y2_label = "";
+};
+
+/// A figure of columns of one table against one of its columns; lines whose
+/// column the table lacks are left out, and so is a figure with no line.
+void add_figure(std::vector<Figure> &out, const RunTable &t, const Axes &axes, const std::string &x_column,
+                double x_scale, const std::vector<Line> &lines, bool log_y = false)
+{
+  if (!t.has(x_column))
+    return;
+  Figure f;
+  f.name = axes.name;
+  f.title = axes.title;
+  f.x_label = axes.x_label;
+  f.y_label = axes.y_label;
+  f.y2_label = axes.y2_label;
+  f.log_y = log_y;
+  for (const Line &l : lines)
+    if (t.has(l.column) && (!log_y || t.carries(l.column)))
+    {
+      Curve c = column_curve(l.title, t.from_plots, x_column, l.column, x_scale, l.scale, l.style);
+      c.right_axis = l.right_axis;
+      f.curves.push_back(std::move(c));
+    }
+  if (!f.curves.empty())
+    out.push_back(std::move(f));
+}
+
+const std::vector<Line> energy_lines = {
+  {"kinetic", "kinetic_energy_j"},
+  {"strain (contacts and bonds)", "strain_energy_j"},
+  {"friction dissipated", "friction_dissipated_j"},
+  {"damping dissipated", "damping_dissipated_j"},
+  {"released by broken bonds", "bond_energy_released_j"},
+  {"boundary work", "boundary_work_j", 1, CurveStyle::dashed},
+  {"gravity work", "gravity_work_j", 1, CurveStyle::dashed},
+  {"residual (balance error)", "energy_residual_j", 1, CurveStyle::points},
+};
+
+const std::vector<Line> broken_by_mode = {
+  {"tension", "bonds_broken_tension"},
+  {"shear", "bonds_broken_shear"},
+  {"displacement criterion", "bonds_broken_displacement"},
+};
+
+void uniaxial_figures(const std::string &dir, std::vector<Figure> &out)
+{
+  const RunTable s(dir, "series.csv");
+  const std::string strain = "axial strain [%]";
+  add_figure(out, s, {"stress_strain", "Axial stress against axial strain", strain, "axial stress [MPa]"},
+             "axial_strain", 100,
+             {{"mean of the platens", "axial_stress_pa", 1e-6},
+              {"top platen", "axial_stress_top_pa", 1e-6, CurveStyle::dashed},
+              {"bottom platen", "axial_stress_bottom_pa", 1e-6, CurveStyle::dashed}});
+  add_figure(out, s,
+             {"damage", "Stress and bonds broken against strain (thesis Fig. 6.1)", strain, "axial stress [MPa]",
+              "bonds broken [% of installed]"},
+             "axial_strain", 100,
+             {{"axial stress", "axial_stress_pa", 1e-6},
+              {"bonds broken", "bonds_broken_fraction", 100, CurveStyle::dashed, true}});
+  add_figure(
+    out, s,
+    {"radial_strain", "Radial strain of the gauges against axial strain", strain, "radial strain [%] (-(r - r0)/r0)"},
+    "axial_strain", 100, {{"radial strain", "radial_strain", 100}});
+  add_figure(out, s, {"bonds_broken_by_mode", "Bonds broken by mode", strain, "bonds broken"}, "axial_strain", 1e2,
+             broken_by_mode);
+  add_figure(out, s, {"energy", "Energy ledger", strain, "energy [J]"}, "axial_strain", 100, energy_lines);
+  add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [s]"}, "time_s", 1,
+             {{"time step", "time_step_s"}});
+  add_figure(out, s, {"quasi_static", "Quasi-static indicators", strain, "ratio [-]"}, "axial_strain", 100,
+             {{"unbalanced force ratio", "unbalanced_force_ratio"}, {"inertial number", "inertial_number"}}, true);
+}
+
+void scene_figures(const std::string &dir, std::vector<Figure> &out)
+{
+  const RunTable s(dir, "series.csv");
+  add_figure(out, s, {"energy", "Energy ledger", "time [s]", "energy [J]"}, "time_s", 1, energy_lines);
+  add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [s]"}, "time_s", 1,
+             {{"time step", "time_step_s"}});
+  std::vector<Line> counts = {{"contacts", "contacts"}, {"bonds intact", "bonds_intact"}};
+  for (const Line &l : broken_by_mode)
+    counts.push_back({"bonds broken in " + l.title, l.column, 1, CurveStyle::dashed});
+  add_figure(out, s, {"contacts_and_bonds", "Contacts and bonds", "time [s]", "count"}, "time_s", 1, counts);
+  std::vector<Line> forces;
+  if (s.usable())
+    for (const std::string &c : s.table->header())
+      if (c.size() > 8 && c.compare(c.size() - 2, 2, "_n") == 0 && c.find("_force_") != std::string::npos &&
+          s.carries(c))
+        forces.push_back({c.substr(0, c.size() - 2), c});
+  add_figure(out, s, {"wall_forces", "Forces on the walls (force on the wall)", "time [s]", "force [N]"}, "time_s", 1,
+             forces);
+  // One tracked pair: its forces (several pairs share the file, row by row,
+  // and are left to the user's own filter).
+  const RunTable c(dir, "contacts.csv");
+  bool one_pair = c.has("first") && c.has("second");
+  for (std::size_t r = 1; one_pair && r < c.table->rows(); ++r)
+    one_pair =
+      c.table->get(r, "first") == c.table->get(0, "first") && c.table->get(r, "second") == c.table->get(0, "second");
+  if (one_pair)
+    add_figure(
+      out, c, {"contact_forces", "Forces of the tracked contact (normal > 0 in compression)", "time [s]", "force [N]"},
+      "time_s", 1, {{"normal", "normal_force_n"}, {"shear (magnitude)", "shear_force_n", 1, CurveStyle::dashed}});
+}
+
+void burgers_ode_figures(const std::string &dir, std::vector<Figure> &out)
+{
+  const RunTable s(dir, "series.csv");
+  add_figure(out, s, {"force", "Force of the Burger's element", "time [s]", "force [N]"}, "time_s", 1,
+             {{"CVODE", "force_n"}, {"closed form", "force_closed_form_n", 1, CurveStyle::dashed}});
+  add_figure(out, s, {"displacement", "Displacement of the Burger's element", "time [s]", "displacement [m]"}, "time_s",
+             1, {{"CVODE", "displacement_m"}, {"closed form", "displacement_closed_form_m", 1, CurveStyle::dashed}});
+  add_figure(out, s, {"internal", "Internal displacements", "time [s]", "displacement [m]"}, "time_s", 1,
+             {{"Kelvin element", "kelvin_displacement_m"}, {"Maxwell dashpot", "maxwell_dashpot_displacement_m"}});
+}
+
+void cylinder_curves(const RunTable &s, std::vector<Figure> &out)
+{
+  const std::vector<Line> stress = {
+    {"finite elements", "axial_stress_pa", 1e-6},
+    {"closed form (homogeneous)", "axial_stress_closed_form_pa", 1e-6, CurveStyle::dashed}};
+  add_figure(out, s, {"stress_strain", "Axial stress against axial strain", "axial strain [%]", "axial stress [MPa]"},
+             "axial_strain", 100, stress);
+  add_figure(out, s, {"stress_time", "Axial stress against time", "time [s]", "axial stress [MPa]"}, "time_s", 1,
+             stress);
+  add_figure(out, s, {"radial_strain", "Radial strain at mid-height", "axial strain [%]", "radial strain [%]"},
+             "axial_strain", 100,
+             {{"finite elements", "radial_strain", 100},
+              {"closed form (homogeneous)", "radial_strain_closed_form", 100, CurveStyle::dashed}});
+}
+
+/// A compare run: DEM, calibrated and affine continuum side by side.
+void compare_figures(const RunTable &s, std::vector<Figure> &out)
+{
+  const auto sides = [](const std::string &quantity, const std::string &unit, double scale)
+  {
+    return std::vector<Line>{{"DEM", quantity + "_dem" + unit, scale},
+                             {"continuum, calibrated", quantity + "_calibrated" + unit, scale, CurveStyle::dashed},
+                             {"continuum, affine", quantity + "_affine" + unit, scale, CurveStyle::dashed}};
+  };
+  add_figure(out, s, {"stress_time", "Axial stress against time", "time [s]", "axial stress [MPa]"}, "time_s", 1,
+             sides("axial_stress", "_pa", 1e-6));
+  add_figure(out, s, {"strain_time", "Axial strain against time", "time [s]", "axial strain [%]"}, "time_s", 1,
+             sides("axial_strain", "", 100));
+  add_figure(out, s, {"radial_strain", "Radial strain against time", "time [s]", "radial strain [%]"}, "time_s", 1,
+             sides("radial_strain", "", 100));
+  add_figure(out, s, {"difference", "DEM minus continuum", "time [s]", "axial stress difference [MPa]"}, "time_s", 1,
+             {{"DEM - calibrated", "stress_difference_calibrated_pa", 1e-6},
+              {"DEM - affine", "stress_difference_affine_pa", 1e-6, CurveStyle::dashed}});
+  if (!s.has("axial_strain_dem"))
+    return;
+  Figure f;
+  f.name = "stress_strain";
+  f.title = "Axial stress against axial strain";
+  f.x_label = "axial strain [%]";
+  f.y_label = "axial stress [MPa]";
+  for (const auto &[title, side] : std::vector<std::pair<std::string, std::string>>{
+         {"DEM", "dem"}, {"continuum, calibrated", "calibrated"}, {"continuum, affine", "affine"}})
+    f.curves.push_back(column_curve(title, s.from_plots, "axial_strain_" + side, "axial_stress_" + side + "_pa", 100,
+                                    1e-6, side == "dem" ? CurveStyle::line : CurveStyle::dashed));
+  out.push_back(std::move(f));
+}
+
+void mesh_figure(const std::string &dir, std::vector<Figure> &out)
+{
+  if (!exists(dir + "/mesh.csv"))
+    return;
+  Figure f;
+  f.name = "mesh";
+  f.title = "Finite-element mesh (cell edges)";
+  f.x_label = "r or x [mm]";
+  f.y_label = "z [mm]";
+  f.key = "off";
+  f.equal_axes = true;
+  f.curves.push_back(column_curve("mesh", "../mesh.csv", "1", "2", 1e3, 1e3));
+  out.push_back(std::move(f));
+}
+
+std::vector<double> numbers(const nlohmann::json &j)
+{
+  std::vector<double> v;
+  for (const auto &x : j)
+    v.push_back(x.get<double>());
+  return v;
+}
+
+void gci_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  Figure levels;
+  levels.name = "levels";
+  levels.title = "Axial stress on every mesh of the study";
+  levels.x_label = "axial strain [%]";
+  levels.y_label = "axial stress [MPa]";
+  for (int k = 1; exists(dir + "/level_" + std::to_string(k) + "/series.csv"); ++k)
+    levels.curves.push_back(column_curve("level " + std::to_string(k), "../level_" + std::to_string(k) + "/series.csv",
+                                         "axial_strain", "axial_stress_pa", 100, 1e-6));
+  if (!levels.curves.empty())
+    out.push_back(std::move(levels));
+  const auto &study = summary.at("gci").at(0);
+  for (auto it = study.begin(); it != study.end(); ++it)
+  {
+    if (!it->is_object() || !it->contains("extrapolated"))
+      continue;
+    const nlohmann::json &g = *it;
+    GciLevels l{numbers(g.at("cell_sizes_m_fine_to_coarse")), numbers(g.at("values_fine_to_coarse")),
+                g.at("extrapolated").get<double>(), g.at("observed_order").get<double>(),
+                g.at("gci_fine").get<double>()};
+    std::string quantity = it.key();
+    if (quantity.size() > 3 && quantity.compare(quantity.size() - 3, 3, "_pa") == 0)
+      quantity.resize(quantity.size() - 3);
+    for (char &c : quantity)
+      c = c == '_' ? ' ' : c;
+    out.push_back(
+      gci_figure(figure_name("gci_" + it.key()), quantity, l, 1e3, 1e-6, "cell size [mm]", quantity + " [MPa]"));
+  }
+}
+
+/// Thesis Fig. 5.5: the mean stress of the packed sample against the
+/// reduction of every radius (stage 4 of the preparation), step by step,
+/// with the stress target the steps aim below.
+void prepare_figures(const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  const nlohmann::json &prep = summary.value("preparation", nlohmann::json::object());
+  if (!prep.contains("radius_reduction") || prep.at("radius_reduction").size() < 2)
+    return;
+  std::vector<double> change, stress;
+  for (const auto &step : prep.at("radius_reduction"))
+  {
+    change.push_back(step.at("radius_change").get<double>());
+    stress.push_back(step.at("mean_stress_pa").get<double>());
+  }
+  Figure f = make_figure("radius_reduction", "Isotropic stress against the reduction of the radii",
+                         "relative change of every radius [%]", "mean stress of the packing [Pa]",
+                         {curve("each step, settled", change, stress, CurveStyle::markers_and_line)},
+                         "Stage 4 of the preparation: every radius scaled, the packing settled, its mean stress "
+                         "measured (secant steps towards half the target).");
+  f.log_y = true;
+  f.key = "top right";
+  f.curves.front().x_scale = 100;
+  const nlohmann::json target = summary.value("stress_target_pa", nlohmann::json());
+  if (target.is_number())
+  {
+    const double pa = target.get<double>();
+    f.curves.push_back(curve("stress target", {change.front(), change.back()}, {pa, pa}, CurveStyle::dashed));
+    f.curves.back().x_scale = 100;
+  }
+  out.push_back(std::move(f));
+}
+
+void mms_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  const RunTable t(dir, "convergence.csv");
+  if (!t.usable())
+    return;
+  const auto column = [&](const std::string &c)
+  {
+    std::vector<double> v;
+    for (std::size_t r = 0; r < t.table->rows(); ++r)
+      v.push_back(t.table->get(r, c));
+    return v;
+  };
+  const std::vector<double> h = column("cell_size_m"), dt = column("time_step_s");
+  const bool in_space = h.front() != h.back();
+  Figure f;
+  f.name = "convergence";
+  f.title = std::string("Convergence to the manufactured solution in ") + (in_space ? "space" : "time");
+  f.x_label = in_space ? "cell size [m]" : "time step [s]";
+  f.y_label = "relative error [-]";
+  f.key = "top left";
+  const nlohmann::json expected = summary.value("expected_orders", nlohmann::json::object());
+  for (auto it = expected.begin(); it != expected.end(); ++it)
+    if (t.has(it.key()))
+      add_order_study(f, it.key(), in_space ? h : dt, column(it.key()), it->get<double>());
+  if (!f.curves.empty())
+    out.push_back(std::move(f));
+}
+} // namespace
+
+void uniaxial_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)
+{
+  uniaxial_figures(dir, out);
+}
+
+void scene_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)
+{
+  scene_figures(dir, out);
+}
+
+void burgers_ode_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)
+{
+  burgers_ode_figures(dir, out);
+}
+
+void cylinder_run_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  if (summary.contains("gci"))
+    return gci_figures(dir, summary, out);
+  cylinder_curves(RunTable(dir, "series.csv"), out);
+  mesh_figure(dir, out);
+}
+
+void mms_run_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  mms_figures(dir, summary, out);
+}
+
+void prepare_run_figures(const std::string &, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  prepare_figures(summary, out);
+}
+
+void compare_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)
+{
+  compare_figures(RunTable(dir, "compare.csv"), out);
+}
+
+std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kinds)
+{
+  const std::string path = run_dir + "/summary.json";
+  if (!exists(path))
+    throw DeckError(run_dir + ": not a demvv run directory (expected " + path + ")");
+  try
+  {
+    const nlohmann::json summary =
+      parse_json_input(read_input(path, "run summary", max_summary_bytes), path, "run summary");
+    std::vector<Figure> out;
+    const DeckKind *kind = find_deck_kind(kinds, summary.at("kind").get<std::string>());
+    if (kind && kind->figures)
+      kind->figures(run_dir, summary, out);
+    return out;
+  }
+  catch (const nlohmann::json::exception &e)
+  {
+    throw DeckError(path + ": not a readable run summary: " + e.what());
+  }
+}
+
+std::vector<DrawnFigure> plot_run(const std::string &run_dir, const DeckKinds &kinds)
+{
+  return draw_figures(run_figures(run_dir, kinds), run_dir + "/plots");
+}
+} // namespace demvv

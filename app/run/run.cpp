@@ -1,0 +1,490 @@
+#include "app/run/run.h"
+
+#include "app/io/input.h"
+#include "app/io/output.h"
+#include "app/io/paraview.h"
+
+#include <fcntl.h>
+#include <omp.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace demvv
+{
+nlohmann::json RunStatus::to_json() const
+{
+  const char *state = fault ? "numerical fault" : interrupted_by ? "interrupted" : paused ? "paused" : "completed";
+  nlohmann::json j = {
+    {"state", state}, {"interrupted", interrupted_by != 0 || paused}, {"steps", steps}, {"wall_seconds", wall_seconds}};
+  if (interrupted_by)
+    j["signal"] = interrupted_by == SIGINT ? "SIGINT" : interrupted_by == SIGTERM ? "SIGTERM" : "signal";
+  if (fault)
+    j["fault"] = {{"step", step}, {"time_s", time}, {"particle", particle}, {"message", message}};
+  return j;
+}
+
+std::string RunStatus::diagnostic() const
+{
+  std::ostringstream o;
+  o << "numerical fault at step " << step << ", time " << time << " s";
+  if (particle >= 0)
+    o << ", particle " << particle;
+  o << ": " << message;
+  return o.str();
+}
+
+int RunStatus::exit_code() const
+{
+  if (fault)
+    return 3;
+  return interrupted_by ? 128 + interrupted_by : 0;
+}
+
+const std::vector<std::string> &output_entries(const std::string &what)
+{
+  static const std::vector<std::string> run = {ownership_marker,
+                                               "deck.prm",
+                                               "summary.json",
+                                               "series.csv",
+                                               "particles.csv",
+                                               "contacts.csv",
+                                               "bond_breaks.csv",
+                                               "compare.csv",
+                                               "convergence.csv",
+                                               "convergence.txt",
+                                               "gauge_study.csv",
+                                               "mesh.csv",
+                                               "sample.json",
+                                               "checkpoint",
+                                               "plots",
+                                               "paraview",
+                                               "level_*",
+                                               "calibration",
+                                               "dem",
+                                               "dem_half_time_step",
+                                               "*.tmp"};
+  static const std::vector<std::string> sweep = {
+    ownership_marker,      "sweep.json",           "sweep.csv", "stats.csv", "members", "plots",
+    "time_step_study.csv", "time_step_study.json", "*.tmp"};
+  static const std::vector<std::string> calibration = {
+    ownership_marker, "calibration.json", "evaluations.csv", "fitted.prm", "evaluations", "plots", "*.tmp"};
+  if (what == "run")
+    return run;
+  if (what == "sweep")
+    return sweep;
+  if (what == "calibration")
+    return calibration;
+  throw std::logic_error("demvv bug: no output entries for '" + what + "'");
+}
+
+bool matches_entry(const std::string &name, const std::vector<std::string> &patterns)
+{
+  for (const std::string &p : patterns)
+  {
+    if (p == name)
+      return true;
+    const std::size_t n = p.size() - 1;
+    if (p.size() > 1 && p.back() == '*' && name.size() > n && name.compare(0, n, p, 0, n) == 0)
+      return true;
+    if (p.size() > 1 && p.front() == '*' && name.size() > n && name.compare(name.size() - n, n, p, 1, n) == 0)
+      return true;
+  }
+  return false;
+}
+
+void mark_directory(const std::string &dir, const std::string &what)
+{
+  write_atomically(dir + "/" + ownership_marker,
+                   json_text({{"made_by", "demvv"},
+                              {"holds", what},
+                              {"outputs", output_entries(what)},
+                              {"note", "demvv resumes, replaces or empties only directories holding this file, and "
+                                       "removes only entries named in outputs"}},
+                             2) +
+                     "\n");
+}
+
+bool marked_as(const std::string &dir, const std::string &what)
+{
+  const std::string path = dir + "/" + ownership_marker;
+  struct stat st
+  {
+  };
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    return false;
+  try
+  {
+    const nlohmann::json doc = parse_json_input(read_input(path, "demvv marker", 1 << 16), path, "demvv marker");
+    return doc.is_object() && doc.value("made_by", "") == "demvv" && doc.value("holds", "") == what;
+  }
+  catch (const std::exception &)
+  {
+    return false;
+  }
+}
+
+DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
+{
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(dir, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+    throw DeckError(what + " directory '" + dir + "' exists and is not a directory: expected a directory for the " +
+                    what + "'s files (--out)");
+  make_directories(dir);
+  const std::string path = dir + "/" + lock_file;
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw DeckError(what + " directory '" + dir + "': cannot open its lock file " + lock_file + " (" +
+                    std::strerror(errno) + "): expected a directory demvv may write, holding no link of that name");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+  {
+    char holder[32] = {0};
+    const ssize_t n = ::pread(fd_, holder, sizeof holder - 1, 0);
+    ::close(fd_);
+    fd_ = -1;
+    std::string pid = n > 0 ? std::string(holder, std::size_t(n)) : std::string();
+    pid.erase(pid.find_last_not_of(" \n") + 1);
+    throw DeckError(what + " directory '" + dir + "' is in use by another demvv process" +
+                    (pid.empty() ? std::string() : " (pid " + pid + ")") +
+                    ": expected it to finish first, or another --out");
+  }
+  // The pid is a courtesy for a second process's message; the lock holds without it.
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  [[maybe_unused]] const bool noted =
+    ::ftruncate(fd_, 0) == 0 && ::pwrite(fd_, pid.data(), pid.size(), 0) == static_cast<ssize_t>(pid.size());
+}
+
+DirectoryLock::~DirectoryLock()
+{
+  if (fd_ >= 0)
+    ::close(fd_); // releases the lock; the file stays (removing it would race a waiting process)
+}
+
+bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(dir, ec);
+  if (!fs::exists(status))
+    return false;
+  if (!fs::is_directory(status))
+    throw DeckError(named + " exists and is not a directory: expected a directory for " + holding + " (--out)");
+  fs::directory_iterator entries(dir, ec);
+  if (ec)
+    throw DeckError(named + " cannot be read (" + ec.message() + "): expected a directory demvv may write (--out)");
+  for (const fs::directory_entry &entry : entries)
+    if (entry.path().filename() != lock_file)
+      return true;
+  return false;
+}
+
+void remove_outputs(const std::string &dir, const std::string &what, const std::vector<std::string> &keep)
+{
+  namespace fs = std::filesystem;
+  const std::vector<std::string> &names = output_entries(what);
+  std::vector<fs::path> old;
+  std::error_code ec;
+  for (const fs::directory_entry &entry : fs::directory_iterator(dir))
+  {
+    const fs::path canonical = fs::weakly_canonical(fs::absolute(entry.path(), ec), ec);
+    const bool input = std::find(keep.begin(), keep.end(), canonical.string()) != keep.end();
+    if (!input && matches_entry(entry.path().filename().string(), names) && entry.path().filename() != ownership_marker)
+      old.push_back(entry.path());
+  }
+  // remove_all does not follow links: a link among the entries goes, its target stays.
+  for (const fs::path &entry : old)
+    if (fs::remove_all(entry, ec) == static_cast<std::uintmax_t>(-1) || ec)
+      throw OutputError(entry.string() + ": cannot be removed to replace the " + what + " in " + dir + " (" +
+                        ec.message() + ")");
+}
+
+bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what, const std::string &record)
+{
+  const std::string named = what + " directory '" + dir + "'";
+  if (!holds_entries(dir, named, "the " + what))
+  {
+    mark_directory(dir, what);
+    return false;
+  }
+  if (!marked_as(dir, what) || !std::filesystem::exists(std::filesystem::path(dir) / record))
+    throw DeckError(named + " is not empty and is no " + what + " directory demvv made (it lacks demvv's marker " +
+                    ownership_marker + " or " + record + "): expected a new or empty directory (--out), or a " + what +
+                    "'s own to resume or replace");
+  if (!replace)
+    return true;
+  remove_outputs(dir, what);
+  mark_directory(dir, what);
+  return false;
+}
+
+void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate,
+                         const std::vector<std::string> &inputs)
+{
+  const std::string named = "run directory '" + dir + "'";
+  if (!holds_entries(dir, named, "the run's files"))
+    return;
+  if (!replace)
+    throw DeckError(named + " is not empty: expected a new or empty directory (--out), or --replace to replace "
+                            "the run there whole");
+  if (!marked_as(dir, "run"))
+    throw DeckError(named + " is not empty and holds no demvv marker (" + std::string(ownership_marker) +
+                    "), so it is no run directory demvv made: --replace replaces only those: expected a run "
+                    "directory or a new or empty one (--out)");
+  validate();
+  remove_outputs(dir, "run", inputs);
+}
+
+void record_fault(RunStatus &status, const dem::NumericalFault &fault)
+{
+  status.fault = true;
+  status.step = fault.step;
+  status.time = fault.time;
+  status.particle = fault.particle;
+  status.message = fault.what();
+}
+
+void record_failure(RunStatus &status, const continuum::NumericalFailure &failure)
+{
+  status.fault = true;
+  status.step = failure.step();
+  status.time = failure.time();
+  status.message = failure.what();
+}
+
+nlohmann::json hash_input_files(const std::vector<std::string> &paths)
+{
+  nlohmann::json hashes = nlohmann::json::object();
+  for (const std::string &p : paths)
+  {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(p, ec))
+      hashes[p] = fnv1a_hex(read_input(p, "input file", max_table_bytes));
+  }
+  return hashes;
+}
+
+RunDirectory::RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed, bool resuming)
+  : dir_(dir), deck_hash_(fnv1a_hex(deck.resolved)), deck_(deck), input_hashes_(hash_input_files(deck.inputs))
+{
+  make_directories(dir);
+  mark_directory(dir, "run");
+  const std::string &resolved = deck.resolved;
+  provenance_ = provenance(threads, seed, resolved);
+  provenance_["deck_file"] = deck.path;
+  provenance_["resolved_deck"] = "deck.prm";
+  if (resuming)
+    return;
+  write_atomically(path("deck.prm"), resolved);
+  write_summary({{"status", {{"state", "running"}}}});
+}
+
+namespace
+{
+/// `text` as one word of a POSIX shell's command line.
+std::string shell_word(const std::string &text)
+{
+  static const std::string plain = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789/._-=+,:@%";
+  if (!text.empty() && text.find_first_not_of(plain) == std::string::npos)
+    return text;
+  std::string word = "'";
+  for (const char c : text)
+    word += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return word + "'";
+}
+} // namespace
+
+std::string resume_command(const DeckRecord &deck, const RunOptions &options)
+{
+  std::string command = "demvv run " + (deck.path.empty() ? std::string("DECK") : shell_word(deck.path));
+  for (const std::string &assignment : deck.overrides)
+    command += " --set " + shell_word(assignment);
+  if (options.most_threads > 0)
+    command += " --threads " + std::to_string(options.most_threads);
+  return command + " --resume " + shell_word(options.out_dir);
+}
+
+void RunDirectory::write_summary(nlohmann::json summary) const
+{
+  summary["provenance"] = provenance_;
+  write_atomically(path("summary.json"), json_text(summary, 2) + "\n");
+}
+
+RunFiles::RunFiles(const RunOptions &options, const DeckRecord &deck, int threads, long long seed,
+                   const std::string &convention, bool paraview)
+{
+  if (options.out_dir.empty())
+    return;
+  dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed, options.resume);
+  if (!options.resume)
+    breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"),
+                                          convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
+                                          std::vector<std::string>{"time_s", "first", "second", "mode"});
+  if (paraview)
+    paraview_ = std::make_unique<ParaviewWriter>(dir_->path("paraview"));
+}
+
+RunFiles::~RunFiles() = default;
+
+void RunFiles::drain_breaks(dem::Simulation &sim)
+{
+  const std::vector<dem::BondBreak> breaks = sim.take_breaks();
+  if (breaks.empty())
+    return;
+  if (breaks_)
+    for (const dem::BondBreak &b : breaks)
+      breaks_->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
+  if (paraview_)
+    paraview_->add_breaks(sim, breaks);
+}
+
+nlohmann::json RunFiles::checkpoint_state() const
+{
+  nlohmann::json state = nlohmann::json::object();
+  if (dir_)
+  {
+    sync_file(dir_->path("bond_breaks.csv"));
+    state["bond_breaks_bytes"] = std::filesystem::file_size(dir_->path("bond_breaks.csv"));
+  }
+  if (paraview_)
+    state["paraview"] = paraview_->state();
+  return state;
+}
+
+void RunFiles::resume(const nlohmann::json &state)
+{
+  if (!dir_)
+    return;
+  breaks_ =
+    std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), 4, state.at("bond_breaks_bytes").get<std::uintmax_t>());
+  if (paraview_ && state.contains("paraview"))
+    paraview_->restore(state.at("paraview"));
+}
+
+int idle_cores()
+{
+  const int cores = omp_get_num_procs();
+  std::ifstream in("/proc/loadavg");
+  double minute = 0, five = 0, fifteen = 0;
+  std::string tasks;
+  if (!(in >> minute >> five >> fifteen >> tasks))
+    return cores;
+  const int runnable = std::atoi(tasks.c_str()); // "runnable/total", this process included
+  return std::clamp(cores - (runnable - 1), 1, cores);
+}
+
+bool threads_are_ours(const RunOptions &options)
+{
+  return options.most_threads > 0 || (options.threads <= 0 && !std::getenv("OMP_NUM_THREADS"));
+}
+
+int thread_ceiling(const RunOptions &options)
+{
+  return options.most_threads > 0 ? std::min(options.most_threads, omp_get_num_procs()) : omp_get_num_procs();
+}
+
+int apply_threads(const RunOptions &options)
+{
+  // More threads than the machine has cores never run faster, and a few
+  // hundred exhaust libgomp's address space under a memory cap: the count
+  // asked for is clamped to the cores (results do not depend on it).
+  if (options.threads > 0)
+    omp_set_num_threads(std::min(options.threads, omp_get_num_procs()));
+  else if (threads_are_ours(options))
+    omp_set_num_threads(idle_cores());
+  return omp_get_max_threads();
+}
+
+ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<double()> now)
+  : now_(std::move(now)), most_(std::max(most, 1)), current_(active ? std::clamp(start, 1, most_) : start),
+    ours_(active)
+{
+  if (ours_ && current_ != start)
+    use(current_);
+  if (!now_)
+    now_ = [start = std::chrono::steady_clock::now()]
+    { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  begin_window();
+  next_trial_ = window_start_ + trial_spacing_;
+}
+
+nlohmann::json ThreadGovernor::to_json() const
+{
+  nlohmann::json j = {{"governed", ours_}, {"at_end", threads()}, {"changes", changes_}};
+  if (ours_)
+    j["most"] = most_;
+  return j;
+}
+
+void ThreadGovernor::begin_window()
+{
+  steps_ = 0;
+  window_start_ = now_();
+}
+
+void ThreadGovernor::use(int threads) { omp_set_num_threads(threads); }
+
+void ThreadGovernor::after_step()
+{
+  if (!ours_ || most_ == 1 || ++steps_ < window_steps_) // no trials where only one count is allowed
+    return;
+  constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32;
+  const double end = now_();
+  const double per_step = std::max((end - window_start_) / double(steps_), 1e-9);
+  window_steps_ = std::clamp(long(window_seconds / per_step), 4L, 100000L);
+  switch (phase_)
+  {
+  case Phase::settled:
+    settled_per_step_ = per_step;
+    if (end >= next_trial_)
+    {
+      if (current_ == 1)
+        try_fewer_ = false;
+      else if (current_ == most_)
+        try_fewer_ = true;
+      trial_ = try_fewer_ ? current_ - 1 : current_ + 1;
+      use(trial_);
+      window_steps_ = std::max(4L, window_steps_ / 2); // 0.2 s even if the trial runs twice as slow
+      phase_ = Phase::trial;
+    }
+    break;
+  case Phase::trial:
+    trial_per_step_ = per_step;
+    use(current_);
+    window_steps_ = std::clamp(long(window_seconds / settled_per_step_), 4L, 100000L);
+    phase_ = Phase::confirm;
+    break;
+  case Phase::confirm:
+    // The trial against the better of the windows on either side of it, so
+    // that one window slowed by something else does not decide.
+    if (trial_per_step_ < (1 - gain) * std::min(settled_per_step_, per_step))
+    {
+      try_fewer_ = trial_ < current_;
+      current_ = trial_;
+      use(current_);
+      ++changes_;
+      trial_spacing_ = 2;
+    }
+    else
+    {
+      try_fewer_ = !try_fewer_;
+      trial_spacing_ = std::min(2 * trial_spacing_, longest_spacing);
+    }
+    settled_per_step_ = per_step;
+    next_trial_ = end + trial_spacing_;
+    phase_ = Phase::settled;
+    break;
+  }
+  begin_window();
+}
+} // namespace demvv

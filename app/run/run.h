@@ -1,0 +1,295 @@
+// What every run shares: options, status, the run directory.
+//
+// A run directory holds deck.prm (the resolved deck, written first),
+// summary.json (written at the start with status "running", rewritten
+// atomically at the end or at a fault) and the series files, which grow a
+// complete row at a time.  A run stopped by a numerical fault keeps all of
+// them valid and records the diagnostic (step, time, particle) in
+// summary.json; the command then exits with code 3.  A DEM run refused
+// before its first step (it could never end, dem_driver.h) leaves
+// summary.json with status "refused" and the one-line error (exit code 2).
+// `demvv run` writes only into a new or empty directory, or replaces a run
+// directory whole on request (claim_run_directory); --resume continues in
+// its own.
+#pragma once
+
+#include "app/decks/deck.h"
+
+#include "continuum/numerical_failure.h"
+#include "dem/simulation.h"
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace demvv
+{
+struct RunOptions
+{
+  std::string out_dir;  ///< empty: keep results in memory only
+  int threads = 0;      ///< OpenMP threads (0: leave the default)
+  bool progress = true; ///< show progress on a terminal
+  bool resume = false;  ///< continue the run in out_dir from its checkpoint
+  long pause_after = 0; ///< > 0: stop after this many steps as an interruption would (batch-queue jobs)
+  bool replace = false; ///< demvv run --replace: a non-empty out_dir holding a run is replaced whole
+  /// > 0: `threads` is where a DEM run starts, and it may move between one
+  /// thread and this many (ThreadGovernor): --threads N, or a sweep's share
+  /// of the cores that demvv chose.  0 with `threads` > 0: exactly that many.
+  int most_threads = 0;
+  /// Whether a stopped run can be continued on its own, by `demvv run DECK
+  /// --resume out_dir`: false for a part of a larger run (a comparison's
+  /// parts, a sweep's members), which that run starts again instead.
+  bool resumable_alone = true;
+
+  /// Options that start a run on `threads` and never use more (0: demvv's
+  /// choice): what --threads means.
+  static RunOptions at_most(int threads)
+  {
+    RunOptions o;
+    o.threads = threads;
+    o.most_threads = threads;
+    return o;
+  }
+};
+
+struct RunStatus
+{
+  bool fault = false;
+  int interrupted_by = 0; ///< the signal (SIGINT, SIGTERM) that stopped the run, 0 if none
+  bool paused = false;    ///< stopped by RunOptions::pause_after, checkpoint written
+  long step = 0;          ///< fault step (or steps run)
+  double time = 0;        ///< s
+  dem::Index particle = -1;
+  std::string message;
+  /// A comparison's verdict, said on the run's last line ("" for other kinds).
+  std::string verdict;
+  double wall_seconds = 0;
+  long steps = 0;
+  /// False on the MPI ranks that leave the run directory to rank 0.
+  bool writes_run_directory = true;
+
+  nlohmann::json to_json() const;
+  /// One-line diagnostic for stderr.
+  std::string diagnostic() const;
+  /// The exit code the command returns: 0, 3 (fault), 128 + signal.
+  int exit_code() const;
+};
+
+class RunDirectory
+{
+public:
+  /// Creates the directory, writes deck.prm and a "running" summary.json;
+  /// `resuming`: the directory's deck.prm and summary stay as they are until
+  /// the checkpoint has been read back (a refused resume leaves the paused
+  /// run's summary and its resume command).
+  RunDirectory(const std::string &dir, const DeckRecord &deck, int threads, long long seed, bool resuming = false);
+  std::string path(const std::string &file) const { return dir_ + "/" + file; }
+  /// Rewrites summary.json atomically; provenance is added.
+  void write_summary(nlohmann::json summary) const;
+  /// Identifies the resolved deck (a resumed run must have the same).
+  const std::string &deck_hash() const { return deck_hash_; }
+  /// The deck the run was started from.
+  const DeckRecord &deck() const { return deck_; }
+  /// FNV-1a of each file the deck names ({path: hash}), as the run read
+  /// them: a checkpoint records them, a resume on changed files is refused.
+  const nlohmann::json &input_hashes() const { return input_hashes_; }
+
+private:
+  std::string dir_;
+  std::string deck_hash_;
+  DeckRecord deck_;
+  nlohmann::json provenance_;
+  nlohmann::json input_hashes_ = nlohmann::json::object();
+};
+
+/// {path: FNV-1a of its contents} of the files that exist among `paths`.
+nlohmann::json hash_input_files(const std::vector<std::string> &paths);
+
+class ParaviewWriter;
+class CsvSeries;
+
+/// The files a DEM run writes besides its series: the run directory (when
+/// an output directory is given), the bond-break log and, on request,
+/// ParaView frames.  Without an output directory everything is a no-op.
+class RunFiles
+{
+public:
+  RunFiles(const RunOptions &options, const DeckRecord &deck, int threads, long long seed,
+           const std::string &convention, bool paraview);
+  ~RunFiles();
+  RunDirectory *directory() { return dir_.get(); }
+  const RunDirectory *directory() const { return dir_.get(); }
+  ParaviewWriter *paraview() { return paraview_.get(); }
+  /// Takes the simulation's new bond breaks into bond_breaks.csv and the
+  /// ParaView break log.
+  void drain_breaks(dem::Simulation &sim);
+
+  /// What a checkpoint records of these files (bond_breaks.csv length,
+  /// ParaView state), and continuing from it.
+  nlohmann::json checkpoint_state() const;
+  void resume(const nlohmann::json &state);
+
+private:
+  std::unique_ptr<RunDirectory> dir_;
+  std::unique_ptr<CsvSeries> breaks_;
+  std::unique_ptr<ParaviewWriter> paraview_;
+};
+
+// Ownership.  A directory demvv made holds the marker file `.demvv` (JSON:
+// what it holds, "run", "sweep" or "calibration", and the names of the
+// entries such a directory's runs write); only a directory with the marker
+// is ever resumed, emptied or replaced, and then only the entries of those
+// names are removed: a user's own files beside them stay.  A process that
+// works in a directory (a run, a resume, a sweep, a calibration) holds an
+// exclusive lock on it (flock(2) on `.demvv.lock`) for its whole life; a
+// second one is refused with the one-line error (exit 2), so two writers
+// never mix their rows.
+
+/// The marker's name, and the lock file's.
+constexpr const char *ownership_marker = ".demvv";
+constexpr const char *lock_file = ".demvv.lock";
+
+/// The entries a directory holding `what` ("run", "sweep", "calibration")
+/// may have demvv write: exact names, or a prefix followed by '*', or '*'
+/// followed by a suffix.
+const std::vector<std::string> &output_entries(const std::string &what);
+/// Whether `name` is one of `patterns`.
+bool matches_entry(const std::string &name, const std::vector<std::string> &patterns);
+
+/// Writes the marker that proves demvv made `dir`, holding `what`.
+void mark_directory(const std::string &dir, const std::string &what);
+/// Whether `dir` holds demvv's marker for `what` (a regular file, read within limits).
+bool marked_as(const std::string &dir, const std::string &what);
+
+/// An exclusive lock on a directory for as long as the object lives (made
+/// when absent).  DeckError naming the directory and the process that
+/// holds it when another process does.
+class DirectoryLock
+{
+public:
+  DirectoryLock(const std::string &dir, const std::string &what);
+  ~DirectoryLock();
+  DirectoryLock(const DirectoryLock &) = delete;
+  DirectoryLock &operator=(const DirectoryLock &) = delete;
+
+private:
+  int fd_ = -1;
+};
+
+/// Makes `dir` ready for a new run, before anything is written into it: a
+/// directory that does not exist yet or is empty is taken as it is; a
+/// non-empty one is refused (DeckError naming the directory and --replace),
+/// so that a run's files never mix with an earlier run's (old ParaView
+/// frames, gauge studies, level folders).  With `replace`, a run directory
+/// (one that holds demvv's marker for a run) has the entries a run writes
+/// removed, after `validate` (the deck's parse, every input file read and
+/// checked) has passed, so a bad deck loses nothing; a non-empty directory
+/// without the marker is never emptied (a folder holding a copied deck.prm
+/// is no run directory).  A path that is no directory is refused.
+/// OutputError when an entry cannot be removed.
+/// `inputs` (absolute, as Deck::input_files) are never removed, whatever
+/// their names: a deck run in its own folder keeps itself and its CSVs.
+void claim_run_directory(const std::string &dir, bool replace, const std::function<void()> &validate,
+                         const std::vector<std::string> &inputs = {});
+/// True when `dir` exists and holds entries (the lock file aside), false
+/// when it is absent or empty; DeckError when it is no directory or cannot
+/// be read.  `named` names it in errors ("run directory 'x'"), `holding`
+/// says what it is for.
+bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding);
+/// Removes the entries of `dir` that a directory holding `what` writes
+/// (output_entries), but none of `keep` (absolute paths); OutputError
+/// naming the entry that would not go.
+void remove_outputs(const std::string &dir, const std::string &what, const std::vector<std::string> &keep = {});
+/// Takes the output directory of a command that resumes (a sweep, a
+/// calibration: `what`), recognised by demvv's marker for `what` and the
+/// file `record` inside it: false when it is absent or empty, or when
+/// `replace` has emptied it; true when it holds an earlier one to resume.
+/// DeckError when it holds something else (never emptied).
+bool claim_resumable_directory(const std::string &dir, bool replace, const std::string &what,
+                               const std::string &record);
+
+/// The command that continues a stopped run of `deck` in options.out_dir:
+/// the deck file, its --set values (a resume with others is refused), the
+/// thread ceiling when one was given, each word quoted for a POSIX shell.
+std::string resume_command(const DeckRecord &deck, const RunOptions &options);
+
+/// Records a fault into a status (from a NumericalFault).
+void record_fault(RunStatus &status, const dem::NumericalFault &fault);
+/// Records a continuum run's failure into a status: its step (time step or
+/// ODE output), simulated time [s] and message; no particle.
+void record_failure(RunStatus &status, const continuum::NumericalFailure &failure);
+
+/// The cores no other process is running on as this is called: every core
+/// less the other runnable tasks (the fourth field of /proc/loadavg), at
+/// least one.  Results do not depend on the thread count, only speed does:
+/// beside one CPU-bound process on two cores, one thread ran 1.27 times
+/// faster than two.
+int idle_cores();
+
+/// Sets and returns the OpenMP threads: options.threads (at most the
+/// machine's cores), else OMP_NUM_THREADS when set, else idle_cores().
+int apply_threads(const RunOptions &options);
+
+/// Whether a run may change its thread count while it goes (results never
+/// depend on it): always, unless the count is exact: `threads` > 0 without
+/// `most_threads`, or neither with OMP_NUM_THREADS set.
+bool threads_are_ours(const RunOptions &options);
+/// The most threads a run whose count is ours may use: `most_threads`
+/// (--threads, a sweep's share; at most the cores), else every core.
+int thread_ceiling(const RunOptions &options);
+
+/// The thread count of a DEM run while it goes.  idle_cores() sees the load
+/// at the start only; a process that starts later holds back every step of
+/// a run whose threads wait for one another (two threads beside one busy
+/// process ran slower than one).  Results do not depend on the thread count,
+/// so the count may change between any two steps: every so often the
+/// governor times a window of steps on one thread fewer (or, after one was
+/// given up, one more) and keeps that count if it ran faster by 10 % than
+/// the better of the windows just before and just after it (one window
+/// slowed by something else does not decide).  A window lasts about 0.2 s
+/// of wall time (a trial's half the steps, in case it runs twice as slow);
+/// after a trial that changed nothing the next comes twice as late (2 s at
+/// first, at most 32 s), so on an idle machine trials cost well under 1 %.
+class ThreadGovernor
+{
+public:
+  /// `start`: the threads the run starts with; `most`: never exceeded
+  /// (thread_ceiling()); `active`: whether the count may change
+  /// (threads_are_ours()), else `start` is kept as it is;
+  /// `now`: a clock in seconds (steady_clock when empty; tests pass theirs).
+  ThreadGovernor(int start, int most, bool active, std::function<double()> now = {});
+  /// Called after every step.
+  void after_step();
+  int threads() const { return phase_ == Phase::trial ? trial_ : current_; }
+  /// How often the count changed so far.
+  int changes() const { return changes_; }
+  /// For a run's summary: whether the count was governed (could change),
+  /// up to how many threads, how often it changed, the count at the end.
+  nlohmann::json to_json() const;
+
+private:
+  enum class Phase
+  {
+    settled, ///< running at current_
+    trial,   ///< running at trial_
+    confirm, ///< back at current_, the window that decides
+  };
+  void begin_window();
+  void use(int threads);
+  Phase phase_ = Phase::settled;
+  double trial_per_step_ = 0; ///< s, at trial_
+  std::function<double()> now_;
+  int most_, current_, trial_ = 0, changes_ = 0;
+  bool ours_;                   ///< governed: the count is demvv's to change, up to most_
+  bool try_fewer_ = true;       ///< the direction of the next trial
+  long window_steps_ = 16;      ///< steps in a window, fitted to about 0.2 s
+  long steps_ = 0;              ///< steps taken in this window
+  double window_start_ = 0;     ///< s
+  double settled_per_step_ = 0; ///< s, at current_ in the last window
+  double next_trial_ = 0;       ///< s, when the next trial begins
+  double trial_spacing_ = 2;    ///< s
+};
+} // namespace demvv

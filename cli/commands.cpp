@@ -1,0 +1,171 @@
+#include "cli/commands.h"
+
+#include "app/decks/deck.h"
+#include "app/io/output.h"
+#include "app/kinds/deck_kinds.h"
+#include "app/plot/run_figures.h"
+#include "app/run/dem_driver.h"
+#include "app/studies/ranks.h"
+#include "verify/checks/catalogue.h"
+#include "verify/checks/check.h"
+#include "verify/report/report.h"
+
+#include "continuum/cylinder.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace demvv
+{
+namespace
+{
+const char *signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+/// The one line a finished run leaves on stderr.
+void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
+{
+  if (status.fault)
+  {
+    std::cerr << "demvv: " << status.diagnostic() << "; outputs up to that point are in " << o.out_dir << "\n";
+    return;
+  }
+  if (!status.interrupted_by && !status.paused)
+  {
+    std::cerr << "demvv: done in " << status.wall_seconds << " s (" << status.steps << " steps); results in "
+              << o.out_dir << (status.verdict.empty() ? "" : "; " + status.verdict) << "\n";
+    return;
+  }
+  const std::string stopped =
+    status.paused ? std::string("paused") : std::string("interrupted by ") + signal_name(status.interrupted_by);
+  if (std::filesystem::exists(checkpoint_state_file(o.out_dir)))
+    std::cerr << "demvv: " << stopped << " after step " << status.steps
+              << "; outputs up to that point and a checkpoint are in " << o.out_dir
+              << "; continue with: " << resume_command(deck, o) << "\n";
+  else
+    std::cerr << "demvv: " << stopped << "; outputs up to that point are in " << o.out_dir
+              << "; this kind of run cannot be resumed: run it again with --replace\n";
+}
+
+/// After an output could not be written, summary.json says so instead of
+/// "running" (if the disk still takes that much; otherwise stderr says it).
+void mark_output_failure(const std::string &run_dir, const std::string &why)
+{
+  const std::string path = run_dir + "/summary.json";
+  try
+  {
+    nlohmann::json summary = nlohmann::json::parse(read_file(path));
+    summary["status"] = {{"state", "output failed"}, {"message", why}};
+    write_atomically(path, json_text(summary, 2) + "\n");
+  }
+  catch (const std::exception &)
+  {
+    std::cerr << "demvv: " << path << " could not be marked as failed either: it may still say \"running\"\n";
+  }
+}
+
+/// Draws a run's figures; one line for what could not be drawn.
+void draw_run_figures(const std::string &run_dir, bool list_drawn)
+{
+  const std::vector<DrawnFigure> figures = plot_run(run_dir, deck_kinds());
+  const auto drawn = std::count_if(figures.begin(), figures.end(), [](const DrawnFigure &f) { return f.drawn(); });
+  const std::string missing = undrawn(figures);
+  if (list_drawn)
+    std::cerr << "demvv: " << drawn << " figure" << (drawn == 1 ? "" : "s") << " in " << run_dir << "/plots\n";
+  if (!missing.empty())
+    std::cerr << "demvv: figures not drawn: " << missing << "\n";
+}
+} // namespace
+
+int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
+{
+  const Deck deck = Deck::from_file(deck_kinds(), deck_path, overrides);
+  RunOptions o = options;
+  if (o.out_dir.empty())
+    o.out_dir = "runs/" + deck.name();
+  const DeckKind *kind = &deck.kind_row();
+  if (!kind->pauses && (o.pause_after > 0 || o.resume))
+    throw DeckError(std::string(o.resume ? "--resume" : "--pause-after " + std::to_string(o.pause_after)) + ": a " +
+                    deck.kind() +
+                    " run has no checkpoint to pause at or resume from: expected it only "
+                    "for scene and uniaxial decks (or a run without it)");
+  std::unique_ptr<DirectoryLock> lock; // held until the run, its figures and its summary are done
+  on_rank_zero_for_all(
+    kind->on_every_mpi_rank,
+    [&]
+    {
+      lock = std::make_unique<DirectoryLock>(o.out_dir, "run");
+      if (!o.resume)
+      {
+        std::vector<std::string> inputs = deck.input_files();
+        if (!deck.path().empty())
+          inputs.push_back(std::filesystem::weakly_canonical(std::filesystem::absolute(deck.path())).string());
+        claim_run_directory(
+          o.out_dir, o.replace, [&] { kind->parse(deck); }, inputs);
+      }
+      else if (!marked_as(o.out_dir, "run"))
+        throw DeckError("--resume '" + o.out_dir + "': holds no demvv marker (" + ownership_marker +
+                        "), so it is no run directory demvv made: expected the directory of a paused or interrupted "
+                        "run");
+    });
+  if (o.resume)
+    check_resumable(o.out_dir, deck);
+  RunStatus status;
+  try
+  {
+    status = kind->run(deck, o);
+  }
+  catch (const OutputError &e)
+  {
+    mark_output_failure(o.out_dir, e.what());
+    throw;
+  }
+  if (status.writes_run_directory)
+    draw_run_figures(o.out_dir, false);
+  tell(deck, o, status);
+  return status.exit_code();
+}
+
+int command_plot(const std::string &run_dir)
+{
+  draw_run_figures(run_dir, true);
+  return 0;
+}
+
+int command_defaults(const std::string &kind)
+{
+  std::cout << Deck::defaults(deck_kinds(), kind).documented();
+  return 0;
+}
+
+int command_verify(bool full, const std::string &only, const std::string &out_dir, const std::string &cases_dir,
+                   int threads)
+{
+  const int used = apply_threads({"", threads, false});
+  CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads};
+  const std::vector<CheckRecord> records = run_checks(ctx, only, true);
+  if (records.empty())
+    throw DeckError("--only '" + only + "': no check id or title contains it");
+  nlohmann::json prov = provenance(used, 0, "");
+  prov.erase("deck_fnv1a64"); // a verification runs many case decks, not one
+  prov["mode"] = full ? "full" : "quick";
+  prov["cases_dir"] = ctx.cases_dir;
+  write_reports(records, prov, out_dir);
+  // A validation check that fails is a finding about the model, reported
+  // with its verdict; it does not fail the run (a check that throws does).
+  const Headline head = headline(records);
+  std::cerr << "demvv: " << head.text() << "; report in " << out_dir << "/report.html (and report.md, report.json)\n";
+  return head.code_failures ? 1 : 0;
+}
+
+int command_catalogue(const std::string &out_file)
+{
+  const std::string text = verification_catalogue();
+  write_named_output(out_file.empty() ? "-" : out_file, text);
+  return 0;
+}
+} // namespace demvv

@@ -1,0 +1,389 @@
+// Whole runs: determinism, thread-count independence, sign conventions,
+// outputs that stay valid when a run stops on a numerical fault, and runs
+// that pause and resume bit for bit.
+#include "app/decks/deck.h"
+#include "app/io/output.h"
+#include "app/kinds/deck_kinds.h"
+#include "app/kinds/scene.h"
+#include "app/kinds/uniaxial.h"
+#include "app/run/dem_driver.h"
+#include "verify/checks/checks_support.h"
+
+#include "tests/test_folder.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <omp.h>
+#include <thread>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+demvv::Deck small_uniaxial(const std::string &law = "linear")
+{
+  demvv::Deck d = demvv::Deck::defaults(demvv::deck_kinds(), "uniaxial");
+  d.set("sample/diameter", "0.008");
+  d.set("sample/height", "0.008");
+  d.set("bonds/normal strength", "20");
+  d.set("bonds/shear strength", "20");
+  d.set("bonds/strength cov", "0.25");
+  d.set("contact law/law", law);
+  d.set("loading/final strain", "0.004");
+  d.set("output/strain interval", "0.0005");
+  return d;
+}
+
+/// summary.json without what legitimately differs between two runs of the
+/// same deck: wall time, speed, the run's own status line and provenance.
+nlohmann::json physics_of(nlohmann::json s)
+{
+  for (const char *k : {"wall_seconds", "particle_steps_per_second", "status", "provenance"})
+    s.erase(k);
+  return s;
+}
+
+nlohmann::json read_json(const fs::path &p) { return nlohmann::json::parse(demvv::read_file(p.string())); }
+} // namespace
+
+TEST_CASE("same deck and seed give identical series whatever the thread count", "[run]")
+{
+  const demvv::Deck d = small_uniaxial();
+  const auto a = demvv::run_uniaxial(d, {"", 1, false});
+  const auto b = demvv::run_uniaxial(d, {"", 1, false});
+  const auto c = demvv::run_uniaxial(d, {"", 2, false});
+  REQUIRE(a.series.rows() > 3);
+  REQUIRE(a.series.rows() == b.series.rows());
+  REQUIRE(a.series.rows() == c.series.rows());
+  for (std::size_t r = 0; r < a.series.rows(); ++r)
+  {
+    CHECK(a.series.row(r) == b.series.row(r));
+    CHECK(a.series.row(r) == c.series.row(r)); // contacts and balls are summed in a fixed order
+  }
+  omp_set_num_threads(omp_get_num_procs());
+}
+
+TEST_CASE("uniaxial compression gives positive axial stress and strain and negative radial strain", "[run]")
+{
+  const auto r = demvv::run_uniaxial(small_uniaxial(), {"", 0, false});
+  REQUIRE_FALSE(r.status.fault);
+  CHECK(r.series.column("axial_strain").back() >= 0.004);
+  CHECK(r.series.column("axial_stress_pa").back() > 0);
+  CHECK(r.series.column("axial_stress_top_pa").back() > 0);
+  CHECK(r.series.column("axial_stress_bottom_pa").back() > 0);
+  CHECK(r.series.column("radial_strain").back() < 0); // the sample bulges
+  CHECK(r.summary["initial_modulus_pa"].get<double>() > 0);
+  const double nu = r.summary["poisson_ratio"].get<double>();
+  CHECK(nu > 0);
+  CHECK(nu < 0.5);
+}
+
+TEST_CASE("a run directory holds the resolved deck and provenance and a complete series", "[run]")
+{
+  const fs::path dir = demvv_tests::test_folder("test_run");
+  fs::remove_all(dir);
+  const demvv::Deck deck = small_uniaxial();
+  demvv::run_uniaxial(deck, {dir.string(), 0, false});
+  for (const char *f : {"deck.prm", "summary.json", "series.csv", "bond_breaks.csv"})
+    CHECK(fs::exists(dir / f));
+  const auto summary = nlohmann::json::parse(demvv::read_file((dir / "summary.json").string()));
+  CHECK(summary["status"]["state"] == "completed");
+  for (const char *k :
+       {"version", "git_sha", "sources_sha256", "compiler", "dem_macros_sha256", "threads", "seed", "deck_fnv1a64"})
+    CHECK(summary["provenance"].contains(k));
+  CHECK(summary["sample"]["description"].get<std::string>().find("verification stand-in") != std::string::npos);
+  // The resolved deck reads back as the deck that was run.
+  CHECK(demvv::Deck::from_file(demvv::deck_kinds(), (dir / "deck.prm").string()).resolved() == deck.resolved());
+  std::ifstream series(dir / "series.csv");
+  std::string comment, header;
+  std::getline(series, comment);
+  std::getline(series, header);
+  CHECK(comment.find("compression positive") != std::string::npos);
+  CHECK(header.find("axial_stress_pa") != std::string::npos);
+}
+
+TEST_CASE("a numerical fault stops the run with a diagnostic and keeps valid outputs", "[run]")
+{
+  // The deck fixes a step five times the stability limit and allows it:
+  // the run blows up, is stopped by the runaway guard, and the rows written
+  // before stay whole.
+  const fs::path dir = demvv_tests::test_folder("test_fault");
+  fs::remove_all(dir);
+  demvv::Deck d = demvv::Deck::from_file(demvv::deck_kinds(), std::string(DEMVV_TEST_DATA) + "/unstable.prm");
+  const auto r = demvv::run_scene(d, {dir.string(), 0, false});
+  REQUIRE(r.status.fault);
+  CHECK(r.status.particle >= 0);
+  CHECK(r.status.step > 0);
+  const auto summary = nlohmann::json::parse(demvv::read_file((dir / "summary.json").string()));
+  CHECK(summary["status"]["state"] == "numerical fault");
+  CHECK(summary["status"]["fault"]["step"].get<long>() == r.status.step);
+  std::ifstream series(dir / "series.csv");
+  std::string line;
+  std::size_t rows = 0, columns = 0;
+  while (std::getline(series, line))
+  {
+    if (line.empty() || line[0] == '#')
+      continue;
+    const std::size_t commas = static_cast<std::size_t>(std::count(line.begin(), line.end(), ','));
+    if (columns == 0)
+      columns = commas;
+    CHECK(commas == columns); // every row whole
+    ++rows;
+  }
+  CHECK(rows > 2);
+}
+
+TEST_CASE("a paused run resumed from its checkpoint equals the run that never stopped", "[run][resume]")
+{
+  // The checkpoint holds the whole simulation state (balls, walls, contacts
+  // with their law state, clock, energy ledger) and the driver's (series
+  // with exact doubles, file lengths, cadence): continuing from it repeats
+  // exactly the operations of the uninterrupted run, so every double must
+  // be equal, not close.
+  const std::string law = GENERATE("linear", "burgers");
+  INFO("law " << law);
+  const demvv::Deck deck = small_uniaxial(law);
+  const fs::path whole = demvv_tests::test_folder("resume_whole_" + law);
+  const fs::path split = demvv_tests::test_folder("resume_split_" + law);
+  fs::remove_all(whole);
+  fs::remove_all(split);
+  const auto reference = demvv::run_uniaxial(deck, {whole.string(), 1, false});
+  REQUIRE(reference.status.steps > 400);
+
+  demvv::RunOptions pause{split.string(), 1, false};
+  pause.pause_after = reference.status.steps / 3;
+  const auto first = demvv::run_uniaxial(deck, pause);
+  REQUIRE(first.status.paused);
+  CHECK(fs::exists(demvv::checkpoint_state_file(split.string())));
+  CHECK(read_json(split / "summary.json")["status"]["state"] == "paused");
+  CHECK_NOTHROW(demvv::check_resumable(split.string(), deck));
+
+  demvv::RunOptions resume{split.string(), 2, false};
+  resume.resume = true;
+  const auto rest = demvv::run_uniaxial(deck, resume);
+  REQUIRE_FALSE(rest.status.fault);
+  CHECK(rest.status.steps == reference.status.steps);
+  REQUIRE(rest.series.rows() == reference.series.rows());
+  for (std::size_t r = 0; r < reference.series.rows(); ++r)
+    CHECK(rest.series.row(r) == reference.series.row(r));
+  for (const char *file : {"series.csv", "bond_breaks.csv"})
+  {
+    INFO(file);
+    CHECK(demvv::read_file((split / file).string()) == demvv::read_file((whole / file).string()));
+  }
+  CHECK(physics_of(read_json(split / "summary.json")) == physics_of(read_json(whole / "summary.json")));
+  CHECK(read_json(split / "summary.json")["status"]["state"] == "completed");
+}
+
+TEST_CASE("a resume is refused for another deck or a directory without a checkpoint", "[run][resume]")
+{
+  const fs::path dir = demvv_tests::test_folder("resume_refused");
+  fs::remove_all(dir);
+  const demvv::Deck deck = small_uniaxial("linear");
+  CHECK_THROWS_AS(demvv::check_resumable(dir.string(), deck), demvv::DeckError);
+  demvv::RunOptions pause{dir.string(), 1, false};
+  pause.pause_after = 50;
+  demvv::run_uniaxial(deck, pause);
+  demvv::Deck other = small_uniaxial("linear");
+  other.set("loading/final strain", "0.005");
+  CHECK_THROWS_WITH(demvv::check_resumable(dir.string(), other), Catch::Contains("another deck"));
+}
+
+TEST_CASE("the default thread count leaves out a core another task is running on", "[run][threads]")
+{
+  const int cores = omp_get_num_procs();
+  if (cores < 2)
+    return; // one core: one thread whatever the load
+  std::atomic<bool> stop{false};
+  std::thread busy(
+    [&]
+    {
+      while (!stop.load(std::memory_order_relaxed))
+        ;
+    });
+  int seen = cores;
+  for (int k = 0; k < 50 && seen == cores; ++k) // until the scheduler has started it
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    seen = demvv::idle_cores();
+  }
+  stop = true;
+  busy.join();
+  CHECK(seen >= 1);
+  CHECK(seen <= cores - 1);
+}
+
+TEST_CASE("a count with a ceiling (--threads, a sweep's share) is governed up to it, an exact count is kept",
+          "[run][threads]")
+{
+  demvv::RunOptions exact{"", 2};
+  CHECK_FALSE(demvv::threads_are_ours(exact));
+  demvv::RunOptions share{"", 2};
+  share.most_threads = 1;
+  CHECK(demvv::threads_are_ours(share));
+  CHECK(demvv::thread_ceiling(share) == 1);
+  CHECK(demvv::thread_ceiling(exact) == omp_get_num_procs());
+  // A ceiling beyond the machine is its cores (--threads 1024 runs on them).
+  share.most_threads = omp_get_num_procs() + 1000;
+  CHECK(demvv::thread_ceiling(share) == omp_get_num_procs());
+  // demvv verify --threads N: each run of a check starts on N, never more.
+  const demvv::RunOptions check = demvv::run_options(demvv::CheckContext{"", true, 3});
+  CHECK(check.threads == 3);
+  CHECK(check.most_threads == 3);
+}
+
+TEST_CASE("the thread governor keeps an exact count as it is and clamps a governed one to its ceiling",
+          "[run][threads]")
+{
+  const int before = omp_get_max_threads();
+  const int cores = omp_get_num_procs();
+  omp_set_num_threads(cores + 2);
+  const demvv::ThreadGovernor exact(cores + 2, cores, false);
+  CHECK(exact.threads() == cores + 2);
+  CHECK(omp_get_max_threads() == cores + 2);
+  CHECK(exact.to_json()["at_end"] == cores + 2);
+  CHECK_FALSE(exact.to_json().contains("most"));
+  const demvv::ThreadGovernor governed(cores + 2, cores, true);
+  CHECK(governed.threads() == cores);
+  CHECK(omp_get_max_threads() == cores); // the clamped count is the one that runs
+  CHECK(governed.to_json()["most"] == cores);
+  omp_set_num_threads(before);
+}
+
+TEST_CASE("the thread governor gives up a thread a busy machine holds back and keeps both on an idle one",
+          "[run][threads]")
+{
+  // A simulated machine of two cores: each step advances a simulated clock
+  // by the step's time at the governor's thread count.  Idle, two threads
+  // take 0.5 ms a step and one 1 ms; beside a busy process (from `busy_at`
+  // on) two take 3 ms, since they wait for the core the other process holds.
+  const int threads_before = omp_get_max_threads();
+  struct Machine
+  {
+    double clock = 0, busy_at = 1e9, fewer_seconds = 0;
+  };
+  const auto run = [](Machine &m, demvv::ThreadGovernor &g, double until)
+  {
+    while (m.clock < until)
+    {
+      const bool busy = m.clock >= m.busy_at;
+      const double step = g.threads() == 1 ? 1e-3 : (busy ? 3e-3 : 0.5e-3);
+      if (g.threads() == 1)
+        m.fewer_seconds += step;
+      m.clock += step;
+      g.after_step();
+    }
+  };
+  SECTION("idle: two threads stay, the trials of one cost under 1 % of the time")
+  {
+    Machine m;
+    demvv::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
+    run(m, g, 600);
+    CHECK(g.threads() == 2);
+    CHECK(g.changes() == 0);
+    // Trials of 0.2 s every 2, 4, ... 32 s: about 22 in 600 s, 4.4 s.
+    CHECK(m.fewer_seconds > 0);
+    CHECK(m.fewer_seconds < 0.01 * 600);
+  }
+  SECTION("busy from the start: one thread after the first trial (at 2 s), and kept")
+  {
+    Machine m;
+    m.busy_at = 0;
+    demvv::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
+    run(m, g, 3);
+    CHECK(g.threads() == 1);
+    run(m, g, 120);
+    CHECK(g.threads() == 1);
+    CHECK(g.changes() == 1);
+  }
+  SECTION("a load that arrives mid-run is met within the longest trial spacing")
+  {
+    Machine m;
+    m.busy_at = 300;
+    demvv::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
+    run(m, g, 300);
+    CHECK(g.threads() == 2);
+    run(m, g, 300 + 32 + 1);
+    CHECK(g.threads() == 1);
+  }
+  SECTION("a run that started on one core because another was busy takes the second when it is free")
+  {
+    Machine m;
+    demvv::ThreadGovernor g(1, 2, true, [&] { return m.clock; });
+    run(m, g, 3);
+    CHECK(g.threads() == 2);
+    CHECK(g.changes() == 1);
+  }
+  SECTION("a count the user fixed is never changed")
+  {
+    Machine m;
+    m.busy_at = 0;
+    demvv::ThreadGovernor g(2, 2, false, [&] { return m.clock; });
+    run(m, g, 60);
+    CHECK(g.threads() == 2);
+    CHECK(g.changes() == 0);
+  }
+  omp_set_num_threads(threads_before);
+}
+
+TEST_CASE("a series on a full disk says so with the system's reason", "[run][output]")
+{
+  // /dev/full takes no byte: every write fails with ENOSPC.
+  try
+  {
+    demvv::CsvSeries full("/dev/full", "a comment", {"time_s", "x_m"});
+    FAIL("the header was written to /dev/full");
+  }
+  catch (const demvv::OutputError &e)
+  {
+    CHECK(std::string(e.what()).find("/dev/full") != std::string::npos);
+    CHECK(std::string(e.what()).find(std::strerror(ENOSPC)) != std::string::npos);
+  }
+}
+
+TEST_CASE("a record names this build only when every part of the build's identity agrees", "[run][provenance]")
+{
+  nlohmann::json p = demvv::provenance(1, 1, "deck");
+  CHECK(demvv::made_by_this_build(p));
+  CHECK(demvv::made_by_this_build(demvv::build_identity()));
+  const nlohmann::json identity = demvv::build_identity();
+  CHECK(identity.size() == 5);
+  for (const auto &item : identity.items())
+  {
+    nlohmann::json other = p;
+    other[item.key()] = "another";
+    CHECK_FALSE(demvv::made_by_this_build(other));
+    other.erase(item.key());
+    CHECK_FALSE(demvv::made_by_this_build(other));
+  }
+  CHECK_FALSE(demvv::made_by_this_build(nlohmann::json()));
+  CHECK_FALSE(demvv::made_by_this_build(nlohmann::json::array()));
+}
+
+TEST_CASE("a check's sweep runs each member on at most verify's --threads", "[run][threads]")
+{
+  // One: a ceiling no default (the cores of this machine) equals where there
+  // are two cores or more.
+  const demvv::CheckContext ctx{"", true, 1};
+  demvv::SweepPlan plan;
+  plan.base_deck = std::string(DEMVV_TEST_DATA) + "/small_lattice.prm";
+  plan.keys = {"loading/final strain"};
+  plan.points = {{"0.0005"}};
+  plan.seeds = 1;
+  const demvv::ScratchDirectory scratch;
+  const int before = omp_get_max_threads();
+  const demvv::SweepOutcome outcome = demvv::run_sweep_in(ctx, scratch, plan);
+  omp_set_num_threads(before);
+  REQUIRE(outcome.rows.size() == 1);
+  REQUIRE(outcome.rows[0].status == "completed");
+  const nlohmann::json threads = read_json(fs::path(outcome.rows[0].directory) / "summary.json")["status"]["threads"];
+  CHECK(threads["governed"] == true);
+  CHECK(threads["most"] == 1);
+}

@@ -1,0 +1,36 @@
+#!/bin/sh
+# The demvv command's exit codes: 0 success, 2 bad input or usage,
+# 3 numerical fault (with outputs kept), and one-line errors.
+demvv="$1"; data="$2"; out=$(mktemp -d)
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$demvv" defaults scene > "$out/scene.prm" || fail "defaults scene"
+"$demvv" defaults soup > /dev/null 2> "$out/err"; [ $? -eq 2 ] || fail "defaults of an unknown kind must exit 2"
+[ "$(wc -l < "$out/err")" -eq 1 ] || fail "the error must be one line"
+
+"$demvv" run "$data/nowhere.prm" 2> "$out/err"; [ $? -eq 2 ] || fail "a missing deck must exit 2"
+grep -q "nowhere.prm" "$out/err" || fail "the error must name the file"
+"$demvv" run "$data/unstable.prm" --set "run/duratio=1" 2> "$out/err"; [ $? -eq 2 ] || fail "bad --set must exit 2"
+"$demvv" run --bogus 2> /dev/null; [ $? -eq 2 ] || fail "a bad option must exit 2"
+
+"$demvv" run "$data/unstable.prm" --out "$out/fault" 2> "$out/err"; [ $? -eq 3 ] || fail "a blow-up must exit 3"
+grep -q "step" "$out/err" && grep -q "particle" "$out/err" || fail "the fault diagnostic names step and particle"
+[ -s "$out/fault/series.csv" ] && [ -s "$out/fault/summary.json" ] || fail "outputs kept after a fault"
+
+"$demvv" run "$data/unstable.prm" --out "$out/stop" --set "motion/unstable fixed step=stop" 2> "$out/err"
+[ $? -eq 3 ] || fail "a fixed step above the bound must stop with exit 3"
+grep -q "exceeds the critical step bound" "$out/err" || fail "the diagnostic says the step is too large"
+
+# A thread count beyond the machine is clamped to its cores (not an abort
+# in libgomp, not a run thousands of times slower).
+"$demvv" run "$data/../../cases/v01_linear_impact/case.prm" --out "$out/threads" --threads 1024 --quiet 2> "$out/err" ||
+  fail "--threads 1024 must run (clamped to the cores)"
+python3 -c "import json, os, sys; t = json.load(open(sys.argv[1]))['status']['threads']
+sys.exit(0 if max(t.get('most', 0), t['at_end']) <= os.cpu_count() else 1)" "$out/threads/summary.json" ||
+  fail "--threads 1024 must use at most the machine's cores"
+
+"$demvv" verify --only V05 --out "$out/verify" 2> /dev/null || fail "verify V05 must pass"
+[ -s "$out/verify/report.md" ] && [ -s "$out/verify/report.json" ] || fail "verify writes report.md and report.json"
+"$demvv" bench --particles 300 --steps 20 --repeat 1 | grep -q "particle-steps/s" || fail "bench prints its line"
+rm -rf "$out"
+echo "cli exit codes: ok"

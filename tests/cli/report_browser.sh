@@ -1,0 +1,123 @@
+#!/bin/sh
+# The verification report opened in a real browser (headless Chromium).
+#
+# Runs `demvv verify --quick --only V1` (checks V10-V19: convergence tables,
+# curves beside closed forms, margins; every check passes in its own ctest
+# test, so the page is built from a subset to keep the suite short; one
+# thread: a run beside other tests must not wait on busy cores), opens
+# report.html and requires: no console
+# message at all (the page writes none, so any is an error), every check
+# section drawn with at least one figure, every figure rendered at a
+# non-zero size (the page's own script marks each one), no figure missing,
+# a headline by V&V category with a banner (mode, date, commit, host, CPU),
+# and a screenshot that is not blank (pixels other than the background).
+#
+# usage: report_browser.sh DEMVV WORK_DIR
+set -eu
+demvv=$1
+work=$2
+rm -rf "$work"
+mkdir -p "$work"
+browser=$(command -v chromium || command -v chromium-browser || true)
+if [ -z "$browser" ]; then
+  echo "FAIL: no chromium on the PATH (Debian: apt-get install chromium)"
+  exit 1
+fi
+
+"$demvv" verify --quick --only V1 --threads 1 --out "$work/report" > "$work/verify.log" 2>&1 || {
+  echo "FAIL: demvv verify --quick --only V1 did not pass:"; tail -5 "$work/verify.log"; exit 1; }
+page="file://$(cd "$work/report" && pwd)/report.html"
+
+# HOME and the profile in the work folder: a fresh, private browser profile.
+browse() {
+  HOME="$work" timeout 120 "$browser" --headless --no-sandbox --disable-gpu --no-first-run \
+    --user-data-dir="$work/profile" --virtual-time-budget=10000 --enable-logging=stderr --v=0 "$@"
+}
+browse --dump-dom "$page" > "$work/dom.html" 2> "$work/browser.log"
+browse --window-size=1000,1600 --screenshot="$work/screenshot.png" "$page" > /dev/null 2>> "$work/browser.log"
+
+fail=0
+if grep -q "CONSOLE" "$work/browser.log"; then
+  echo "FAIL: the page wrote to the console:"; grep "CONSOLE" "$work/browser.log"; fail=1
+fi
+body=$(grep -o '<body[^>]*>' "$work/dom.html" || true)
+sections=$(grep -c '<section class="check"' "$work/dom.html" || true)
+rendered=$(grep -o 'data-rendered="yes"' "$work/dom.html" | wc -l)
+case "$body" in
+  *'data-figures-missing="0"'*'data-figures-broken="0"'*) ;;
+  *) echo "FAIL: figures missing or not rendered: $body"; fail=1 ;;
+esac
+figures=$(echo "$body" | sed -n 's/.*data-figures="\([0-9]*\)".*/\1/p')
+if [ -z "$figures" ] || [ "$figures" -ne "$rendered" ] || [ "$sections" -eq 0 ] || [ "$rendered" -lt "$sections" ]; then
+  echo "FAIL: $sections check sections, $figures figures, $rendered rendered (the load script did not run, or a check has no figure)"
+  fail=1
+fi
+# The headline counts by V&V category, the banner says the mode, date,
+# commit, host and CPU.
+python3 - "$work/dom.html" <<'EOF' || fail=1
+import re, sys
+dom = open(sys.argv[1], encoding="utf-8").read()
+head = re.search(r'<p id="headline"[^>]*>(.*?)</p>', dom, re.S)
+banner = re.search(r'<p id="banner">(.*?)</p>', dom, re.S)
+if not head or not re.search(r"code verification \d+/\d+ pass", head.group(1)):
+    print("FAIL: no headline by category:", head.group(1) if head else "none")
+    sys.exit(1)
+if not banner or not all(w in banner.group(1) for w in ("Quick mode", "commit", "Run ")):
+    print("FAIL: no banner with mode, date and commit:", banner.group(1) if banner else "none")
+    sys.exit(1)
+EOF
+# Every check section holds a rendered figure.
+python3 - "$work/dom.html" <<'EOF' || fail=1
+import re, sys
+dom = open(sys.argv[1], encoding="utf-8").read()
+parts = dom.split('<section class="check"')[1:]
+bare = [re.search(r'id="([^"]+)"', p).group(1) for p in parts if 'data-rendered="yes"' not in p.split("</section>")[0]]
+if bare:
+    print("FAIL: check sections without a rendered figure:", ", ".join(bare))
+    sys.exit(1)
+EOF
+# The screenshot is not blank: decode the PNG (zlib + scanline filters) and
+# count pixels that differ from the top-left (background) pixel.
+python3 - "$work/screenshot.png" <<'EOF' || fail=1
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+pos, idat, head = 8, b"", None
+while pos < len(data):
+    n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    chunk = data[pos + 8:pos + 8 + n]
+    if kind == b"IHDR":
+        head = struct.unpack(">IIBBBBB", chunk)
+    elif kind == b"IDAT":
+        idat += chunk
+    pos += n + 12
+width, height, depth, colour = head[:4]
+assert depth == 8 and colour in (2, 6), "unexpected PNG format"
+bpp = 3 if colour == 2 else 4
+raw, stride = zlib.decompress(idat), width * bpp
+prev, rows, k = bytearray(stride), [], 0
+for _ in range(height):
+    f, line = raw[k], bytearray(raw[k + 1:k + 1 + stride])
+    k += 1 + stride
+    for i in range(stride):
+        a = line[i - bpp] if i >= bpp else 0
+        b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+        if f == 1: line[i] = (line[i] + a) & 255
+        elif f == 2: line[i] = (line[i] + b) & 255
+        elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+        elif f == 4:
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(line)
+    prev = line
+background = bytes(rows[0][:3])
+differing = sum(1 for r in rows for x in range(0, stride, bpp) if bytes(r[x:x + 3]) != background)
+share = differing / (width * height)
+if share < 0.01:
+    print("FAIL: the screenshot is blank (%.4f of pixels differ from the background)" % share)
+    sys.exit(1)
+print("screenshot: %.1f %% of pixels drawn" % (100 * share))
+EOF
+[ "$fail" -eq 0 ] && echo "report.html: $sections checks, $rendered figures rendered, no console message"
+exit "$fail"

@@ -1,0 +1,163 @@
+#!/bin/sh
+# demvv sweep: members are the product of the --vary values and the seeds,
+# one run directory each; a value the deck refuses is a row, not the end of
+# the sweep; sweep.csv and stats.csv agree with the members' summaries (the
+# 95 % half-width by Student t); a rerun keeps the completed members and
+# runs only the missing one, to the same table; a directory holding
+# something else, another sweep or a bad --vary is refused (exit 2, one
+# line); under MPI two ranks give the members the same results, byte for
+# byte, as one process; --threads is each member's ceiling.
+# Usage: sweep.sh DEMVV WORK_DIR [MPIRUN]
+set -u
+. "$(dirname "$0")/multi_run_support.sh"
+
+# A small lattice with random bond strengths, so that seeds matter.
+cp "$(dirname "$0")/../data/small_lattice.prm" "$work/base.prm"
+sweep() { "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 "$@"; }
+
+sweep --out "$work/a" --threads 2 2>"$work/err_a" || fail "the sweep failed: $(cat "$work/err_a")"
+[ "$(ls "$work/a/members" | wc -l)" -eq 6 ] || fail "not six member directories: $(ls "$work/a/members")"
+grep -q "6 members: 0 kept from an earlier run, 6 to run" "$work/err_a" || fail "opening line: $(cat "$work/err_a")"
+grep -q '"completed"' "$work/a/sweep.json" && grep -q '"balls/friction"' "$work/a/sweep.json" ||
+  fail "sweep.json lacks its status or varied key"
+
+# The tables against the members' own summaries.
+python3 - "$work/a" <<'EOF' || fail "sweep.csv or stats.csv disagree with the members"
+import csv, json, math, os, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(l for l in open(d + "/sweep.csv") if not l.startswith("#")))
+assert len(rows) == 6, rows
+assert [r["balls/friction"] for r in rows] == ["0.2", "0.2", "-1", "-1", "0.5", "0.5"], rows
+assert [r["seed"] for r in rows] == ["1", "2"] * 3, rows
+assert [r["status"] for r in rows] == ["completed"] * 2 + ["refused"] * 2 + ["completed"] * 2, rows
+assert "friction" in rows[2]["message"], rows[2]
+members = sorted(os.listdir(d + "/members"))
+for r, m in zip(rows, members):
+    assert m.startswith(r["member"] + "_"), (m, r["member"])
+    if r["status"] != "completed":
+        continue
+    s = json.load(open(d + "/members/" + m + "/summary.json"))
+    threads = s["status"]["threads"]  # --threads 2: at most two, governed
+    assert threads["governed"] and threads["most"] == 2 and 1 <= threads["at_end"] <= 2, threads
+    for key in ("peak_stress_pa", "strain_at_peak", "initial_modulus_pa", "poisson_ratio"):
+        assert math.isclose(float(r[key]), s[key], rel_tol=1e-10), (key, r[key], s[key])
+    assert 0 <= float(r["bonds_broken_fraction_at_peak"]) <= 1, r
+    assert int(float(r["particles"])) == s["sample"]["particles"], (r["particles"], s["sample"])
+    assert float(r["run_time_s"]) > 0, r
+peaks = [float(rows[i]["peak_stress_pa"]) for i in (0, 1)]
+assert peaks[0] != peaks[1], "two seeds gave the same peak stress"
+stats = list(csv.DictReader(l for l in open(d + "/stats.csv") if not l.startswith("#")))
+assert [s["n"] for s in stats] == ["2", "0", "2"], stats
+mean = sum(peaks) / 2
+sd = abs(peaks[0] - peaks[1]) / math.sqrt(2)
+t = 12.706204736174698  # Student t, 0.975 quantile, one degree of freedom
+assert math.isclose(float(stats[0]["peak_stress_mean_pa"]), mean, rel_tol=1e-10), stats[0]
+assert math.isclose(float(stats[0]["peak_stress_sd_pa"]), sd, rel_tol=1e-10), stats[0]
+assert math.isclose(float(stats[0]["peak_stress_ci95_pa"]), t * sd / math.sqrt(2), rel_tol=1e-9), stats[0]
+assert stats[1]["peak_stress_mean_pa"] == "", stats[1]
+# The budget of each mean: u_seed its standard error, u_num as the members'
+# summaries state it (empty where no time-step study applies).
+assert math.isclose(float(stats[0]["peak_stress_u_seed_pa"]), sd / math.sqrt(2), rel_tol=1e-9), stats[0]
+first = json.load(open(d + "/members/" + members[0] + "/summary.json"))["uncertainty"]["numerical_time_step"]
+if first["estimated"]:
+    expected = mean * first["peak_stress_pa"]["u_num_relative"]
+    assert math.isclose(float(stats[0]["peak_stress_u_num_pa"]), expected, rel_tol=1e-9), stats[0]
+else:
+    assert first["why"] and stats[0]["peak_stress_u_num_pa"] == "", (first, stats[0])
+# The figure's data: the means against the friction (the refused point left
+# out), then every member, then the 95 % half-widths as error bars.
+blocks = [[[float(x) for x in l.split(",")] for l in b.strip().splitlines() if not l.startswith("#")]
+          for b in open(d + "/plots/peak_stress.csv").read().split("\n\n\n")]
+assert [p[0] for p in blocks[0]] == [0.2, 0.5], blocks[0]
+assert math.isclose(blocks[0][0][1], mean, rel_tol=1e-10), blocks[0]
+assert all(math.isclose(a, b, rel_tol=1e-10) for a, b in zip(sorted(p[1] for p in blocks[1][:2]), sorted(peaks))), blocks[1]
+assert math.isclose(blocks[2][0][2], t * sd / math.sqrt(2), rel_tol=1e-9), blocks[2]
+EOF
+if command -v gnuplot >/dev/null; then
+  for f in peak_stress strain_at_peak initial_modulus; do
+    grep -q "<svg" "$work/a/plots/$f.svg" || fail "the sweep's figure $f.svg was not drawn"
+  done
+fi
+
+# Resume: one member's directory gone, another run by another build (its
+# provenance says so); the rerun runs those two alone and leaves the same
+# table (run times aside).
+without_time() { python3 -c "
+import csv, sys
+rows = csv.reader(l for l in open(sys.argv[1]) if not l.startswith('#'))
+for r in rows:
+    del r[-2]
+    print(r)" "$1"; }
+cp -r "$work/a" "$work/a_before"
+member=$(ls "$work/a/members" | sed -n 5p)
+rm -rf "$work/a/members/$member"
+older=$(ls "$work/a/members" | sed -n 1p)
+python3 - "$work/a/members/$older/summary.json" <<'EOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["provenance"]["sources_sha256"] = "0" * 64
+json.dump(s, open(sys.argv[1], "w"))
+EOF
+sweep --out "$work/a" --threads 2 2>"$work/err_b" || fail "the resumed sweep failed: $(cat "$work/err_b")"
+grep -q "6 members: 4 kept from an earlier run, 2 to run" "$work/err_b" || fail "resume did not keep four: $(cat "$work/err_b")"
+for m in $(ls "$work/a/members"); do
+  [ "$m" = "$member" ] || [ "$m" = "$older" ] && continue
+  cmp -s "$work/a/members/$m/summary.json" "$work/a_before/members/$m/summary.json" || fail "resume reran $m"
+done
+[ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] ||
+  fail "the resumed sweep.csv differs from the uninterrupted one"
+for m in "$member" "$older"; do
+  cmp -s "$work/a/members/$m/series.csv" "$work/a_before/members/$m/series.csv" || fail "the rerun member $m differs"
+done
+
+# Refusals: another sweep into the same directory, a folder that holds no
+# sweep (even with --replace), an unknown key.
+"$demvv" sweep "$work/base.prm" --vary balls/friction=0.3 --out "$work/a" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "holds another sweep" "$work/err" || fail "another sweep into a sweep directory: $(cat "$work/err")"
+one_line "$work/err" "another sweep"
+mkdir -p "$work/other" && echo keep > "$work/other/notes.txt"
+sweep --out "$work/other" --replace 2>"$work/err"
+[ $? -eq 2 ] && [ -f "$work/other/notes.txt" ] || fail "a folder without sweep.json was not refused: $(cat "$work/err")"
+one_line "$work/err" "folder without sweep.json"
+"$demvv" sweep "$work/base.prm" --vary balls/fricton=0.3 --out "$work/c" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "fricton" "$work/err" && [ ! -e "$work/c" ] || fail "an unknown --vary key: $(cat "$work/err")"
+one_line "$work/err" "unknown key"
+sweep --out "$work/a" --replace --quiet 2>"$work/err" || fail "--replace of a sweep directory failed: $(cat "$work/err")"
+[ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] || fail "--replace changed the table"
+
+# Seeds of a sample from a prepare deck: each seed prepares its own
+# packing (cached beside the deck), which its member's deck.prm names.
+printf 'set kind = prepare\nsubsection sample\n  set particles = 200\n  set seed = 5\nend\n' > "$work/small.prm"
+printf 'set kind = uniaxial\nsubsection sample\n  set source = file\n  set file = small.prm\nend\nsubsection loading\n  set final strain = 0.002\nend\nsubsection output\n  set strain interval = 0.0005\nend\n' > "$work/packed.prm"
+"$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/p" --threads 2 --quiet 2>"$work/err" ||
+  fail "the sweep over prepared samples failed: $(cat "$work/err")"
+[ "$(ls "$work/samples" | wc -l)" -eq 2 ] || fail "not one cached sample per seed: $(ls "$work/samples")"
+for s in 1 2; do
+  sample=$(sed -n 's/^ *set file *= *//p' "$work/p/members/"*"_s$s/deck.prm")
+  python3 -c "import json, sys; sys.exit(json.load(open(sys.argv[1]))['seed'] != $s)" "$sample" ||
+    fail "seed $s: its sample '$sample' was not prepared with that seed"
+done
+[ "$(cut -d, -f4 "$work/p/sweep.csv" | sort -u | wc -l)" -eq 4 ] || fail "two seeds gave one peak stress: $(cat "$work/p/sweep.csv")"
+
+# Two MPI ranks share the members: the same results as one process.
+if [ -n "$mpirun" ]; then
+  DEMVV_CACHE="$work/mpi_samples" timeout 300 $launch_np2 "$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/mpi_p" \
+    --threads 1 --quiet 2>"$work/err_mpi" || fail "the 2-rank sweep over prepared samples failed: $(cat "$work/err_mpi")"
+  [ "$(ls "$work/mpi_samples" | wc -l)" -eq 2 ] || fail "MPI: not one sample per seed: $(ls "$work/mpi_samples")"
+  for m in $(ls "$work/p/members"); do # the header names the sample's folder
+    [ "$(tail -n +2 "$work/p/members/$m/series.csv")" = "$(tail -n +2 "$work/mpi_p/members/$m/series.csv")" ] ||
+      fail "MPI: $m has another series"
+  done
+  timeout 300 $launch_np2 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,-1,0.5 --seeds 2 --out "$work/mpi" \
+    --threads 1 --quiet 2>"$work/err_mpi" || fail "the 2-rank sweep failed: $(cat "$work/err_mpi")"
+  for m in $(ls "$work/a/members"); do
+    [ -f "$work/a/members/$m/series.csv" ] || continue
+    cmp -s "$work/a/members/$m/series.csv" "$work/mpi/members/$m/series.csv" || fail "MPI: $m has another series"
+  done
+  [ "$(without_time "$work/mpi/sweep.csv")" = "$(without_time "$work/a/sweep.csv")" ] || fail "MPI: another sweep.csv"
+  grep -q '"ranks": 2' "$work/mpi/sweep.json" || fail "MPI: sweep.json does not say two ranks"
+  timeout 120 $launch_np2 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.2,0.5 --out "$work/mpi" --quiet 2>"$work/err"
+  [ $? -eq 2 ] || fail "MPI: another sweep into the directory was not refused with 2 on every rank"
+fi
+rm -rf "$work"
+echo "sweep: ok"

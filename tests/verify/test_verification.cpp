@@ -1,0 +1,134 @@
+// Every check of the verification registry, as a test: the same code that
+// writes the report decides the test, so the two can never disagree.
+//
+// The tests are not typed out here: when the program starts, one Catch2 test
+// per registry row is registered from check_registry(), named by the row's
+// id and title and tagged [verify] and [<family>], so catch_discover_tests
+// makes each check its own ctest test and a new row is a new test with no
+// edit here.  Each metric is asserted with its value, tolerance, class and
+// reason in the message (a validation check's metrics must be measured,
+// not pass: validation may fail), and its tolerance class must be one its row
+// declares; every declared class must be used, so the catalogue
+// (docs/verification_catalogue.md) lists exactly the classes a check
+// measures.  The last test keeps that committed catalogue in step with the
+// registry.
+#include "verify/checks/catalogue.h"
+#include "verify/checks/check.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace
+{
+void require_check(std::string_view id)
+{
+  const demvv::Check *check = demvv::find_check(id);
+  REQUIRE(check != nullptr);
+  const demvv::CheckOutcome outcome = check->run({demvv::default_cases_dir(), true});
+  REQUIRE_FALSE(outcome.metrics.empty());
+  const std::set<demvv::ToleranceClass> declared(check->tolerance_classes.begin(), check->tolerance_classes.end());
+  std::set<demvv::ToleranceClass> used;
+  for (const demvv::Metric &m : outcome.metrics)
+  {
+    INFO(id << ": " << m.name << " = " << m.value << (m.at_least ? " >= " : " <= ") << m.tolerance << " (class "
+            << demvv::tolerance_class_letter(m.tolerance_class) << ": " << m.reason << ")");
+    // Validation may fail: a validation check's test asks that every
+    // comparison is made (a finite metric); the verdict is the report's.
+    if (check->category == demvv::Category::validation)
+      CHECK(std::isfinite(m.value));
+    else
+      CHECK(m.pass);
+    CHECK(declared.count(m.tolerance_class) == 1);
+    used.insert(m.tolerance_class);
+  }
+  INFO(id << " declares tolerance classes " << demvv::tolerance_class_list(check->tolerance_classes)
+          << " in its registry row; its metrics use " << demvv::tolerance_class_list({used.begin(), used.end()}));
+  CHECK(used == declared);
+}
+
+/// Runs one registered check; Catch owns it once registered.
+class CheckInvoker : public Catch::ITestInvoker
+{
+public:
+  explicit CheckInvoker(std::string_view id) : id_(id) {}
+  void invoke() const override { require_check(id_); }
+
+private:
+  std::string_view id_; ///< points into the registry, which lives as long as the program
+};
+
+/// Registers one test per registry row.  Catch refers to names and tags by
+/// StringRef, so they are kept in a deque, whose elements never move.
+bool register_check_tests()
+{
+  static std::deque<std::string> names_and_tags;
+  for (const demvv::Check &c : demvv::check_registry())
+  {
+    const std::string &name = names_and_tags.emplace_back(std::string(c.id) + " " + std::string(c.title));
+    const std::string &tags = names_and_tags.emplace_back("[verify][" + std::string(c.family) + "]");
+    // AutoReg hands the invoker to the test case, which owns it from then on.
+    Catch::AutoReg(std::make_unique<CheckInvoker>(c.id).release(), CATCH_INTERNAL_LINEINFO, Catch::StringRef(),
+                   Catch::NameAndTags{name, tags});
+  }
+  return true;
+}
+
+const bool check_tests_registered = register_check_tests();
+} // namespace
+
+TEST_CASE("every registry row is complete and declares its tolerance classes in order", "[verify]")
+{
+  REQUIRE(check_tests_registered);
+  std::set<std::string_view> ids;
+  for (const demvv::Check &c : demvv::check_registry())
+  {
+    INFO("check " << c.id);
+    CHECK(ids.insert(c.id).second);
+    CHECK_FALSE(c.title.empty());
+    CHECK_FALSE(c.family.empty());
+    CHECK(c.requirement.rfind("demvv", 0) == 0);
+    CHECK_FALSE(c.reference.empty());
+    CHECK(c.run != nullptr);
+    CHECK_FALSE(c.tolerance_classes.empty());
+    CHECK(std::adjacent_find(c.tolerance_classes.begin(), c.tolerance_classes.end(),
+                             [](demvv::ToleranceClass a, demvv::ToleranceClass b)
+                             { return a >= b; }) == c.tolerance_classes.end());
+  }
+}
+
+TEST_CASE("the committed verification catalogue is what the registry generates", "[verify][catalogue]")
+{
+  const std::string path = demvv::committed_catalogue_path();
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream committed;
+  committed << in.rdbuf();
+  const std::string generated = demvv::verification_catalogue();
+  // Name the first line that differs, so the message says what changed.
+  std::istringstream a(committed.str()), b(generated);
+  std::string line_a, line_b;
+  int line = 0;
+  while (true)
+  {
+    ++line;
+    const bool more_a = static_cast<bool>(std::getline(a, line_a));
+    const bool more_b = static_cast<bool>(std::getline(b, line_b));
+    if (!more_a && !more_b)
+      break;
+    if (more_a != more_b || line_a != line_b)
+    {
+      FAIL(path << " is out of date with the check registry (first difference at line " << line
+                << "). Regenerate it with: build/demvv catalogue --out docs/verification_catalogue.md\n"
+                << "  committed: " << (more_a ? line_a : "(end of file)") << "\n"
+                << "  generated: " << (more_b ? line_b : "(end of file)"));
+    }
+  }
+  CHECK(committed.str() == generated);
+}
