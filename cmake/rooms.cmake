@@ -1,8 +1,9 @@
 # demvv_room(NAME SOURCES... LINKS targets...): one room of the application
 # (app/, verify/) as a static library.  Every room is compiled alike: with
-# deal.II's cached flags (deal_ii_setup_target: its include paths, its MPI),
-# demvv's warnings, and the include root at the repository (and the build
-# folder of app/, where build_info.h and the sources' hash are written).
+# deal.II's cached flags (deal_ii_setup_target: its include paths, its MPI;
+# without its -g in a Release build), demvv's warnings, and the include
+# root at the repository (and the build folder of app/, where build_info.h
+# and the sources' hash are written).
 # A room links the rooms below it, so its library is placed before theirs
 # on every link line: a symbol a lower room took from a higher one would
 # not resolve.  The layering test (cmake/layering.cmake) holds the includes
@@ -14,7 +15,7 @@ function(demvv_room name)
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/app)
   deal_ii_setup_target(${name})
   # deal_ii_setup_target uses the plain signature: so must every later call.
-  target_compile_options(${name} PRIVATE ${DEMVV_WARNINGS})
+  target_compile_options(${name} PRIVATE ${DEMVV_WARNINGS} ${DEMVV_DEAL_II_DEBUG_INFO})
   if(DEMVV_FUZZ)
     # deal.II's flags are GCC's, which clang ignores where it does not know
     # them; its -O2 -g give way to the fuzz flags, which compile a third faster.
