@@ -1,17 +1,19 @@
 // Every check of the verification registry, as a test: the same code that
 // writes the report decides the test, so the two can never disagree.
 //
-// The tests are not typed out here: when the program starts, one Catch2 test
-// per registry row is registered from check_registry(), named by the row's
-// id and title and tagged [verify] and [<family>], so catch_discover_tests
-// makes each check its own ctest test and a new row is a new test with no
-// edit here.  Each metric is asserted with its value, tolerance, class and
+// The tests are not typed out here: one Catch2 TEST_CASE per registry row
+// is generated at configure time from the registry's source
+// (check_tests.cmake), named by the row's id and title and tagged [verify]
+// and [<family>], so catch_discover_tests makes each check its own ctest
+// test and a new row is a new test with no edit here (a row the generator
+// missed fails the completeness test below).  Each metric is asserted with its value, tolerance, class and
 // reason in the message (a validation check's metrics must be measured,
 // not pass: validation may fail), and its tolerance class must be one its row
 // declares; every declared class must be used, so the catalogue
 // (docs/verification_catalogue.md) lists exactly the classes a check
 // measures.  The last test keeps that committed catalogue in step with the
 // registry.
+#include "tests/verify/check_test.h"
 #include "verify/checks/catalogue.h"
 #include "verify/checks/check.h"
 
@@ -19,16 +21,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <fstream>
-#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
 
-namespace
-{
-void require_check(std::string_view id)
+void demvv_test::require_check(std::string_view id)
 {
   const demvv::Check *check = demvv::find_check(id);
   REQUIRE(check != nullptr);
@@ -54,39 +52,16 @@ void require_check(std::string_view id)
   CHECK(used == declared);
 }
 
-/// Runs one registered check; Catch owns it once registered.
-class CheckInvoker : public Catch::ITestInvoker
+TEST_CASE("every registry row has its generated test", "[verify]")
 {
-public:
-  explicit CheckInvoker(std::string_view id) : id_(id) {}
-  void invoke() const override { require_check(id_); }
-
-private:
-  std::string_view id_; ///< points into the registry, which lives as long as the program
-};
-
-/// Registers one test per registry row.  Catch refers to names and tags by
-/// StringRef, so they are kept in a deque, whose elements never move.
-bool register_check_tests()
-{
-  static std::deque<std::string> names_and_tags;
+  std::vector<std::string_view> rows;
   for (const demvv::Check &c : demvv::check_registry())
-  {
-    const std::string &name = names_and_tags.emplace_back(std::string(c.id) + " " + std::string(c.title));
-    const std::string &tags = names_and_tags.emplace_back("[verify][" + std::string(c.family) + "]");
-    // AutoReg hands the invoker to the test case, which owns it from then on.
-    Catch::AutoReg(std::make_unique<CheckInvoker>(c.id).release(), CATCH_INTERNAL_LINEINFO, Catch::StringRef(),
-                   Catch::NameAndTags{name, tags});
-  }
-  return true;
+    rows.push_back(c.id);
+  CHECK(rows == demvv_test::generated_check_ids);
 }
-
-const bool check_tests_registered = register_check_tests();
-} // namespace
 
 TEST_CASE("every registry row is complete and declares its tolerance classes in order", "[verify]")
 {
-  REQUIRE(check_tests_registered);
   std::set<std::string_view> ids;
   for (const demvv::Check &c : demvv::check_registry())
   {
