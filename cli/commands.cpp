@@ -51,6 +51,25 @@ void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
               << "; this kind of run cannot be resumed: run it again with --replace\n";
 }
 
+/// A signal stopped the drawing of a finished run's figures: summary.json
+/// keeps its state and says which figures may be missing and how to draw them.
+void mark_figures_interrupted(const std::string &run_dir, int signal)
+{
+  const std::string path = run_dir + "/summary.json";
+  try
+  {
+    nlohmann::json summary = nlohmann::json::parse(read_file(path));
+    summary["figures"] = {{"interrupted_by", signal_name(signal)},
+                          {"note", "the drawing of the figures was stopped: some may be missing"},
+                          {"draw_with", "demvv plot " + run_dir}};
+    write_atomically(path, json_text(summary, 2) + "\n");
+  }
+  catch (const std::exception &)
+  {
+    std::cerr << "demvv: " << path << " could not say that its figures were interrupted\n";
+  }
+}
+
 /// After an output could not be written, summary.json says so instead of
 /// "running" (if the disk still takes that much; otherwise stderr says it).
 void mark_output_failure(const std::string &run_dir, const std::string &why)
@@ -124,9 +143,25 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
     mark_output_failure(o.out_dir, e.what());
     throw;
   }
+  int stopped_while_drawing = 0;
   if (status.writes_run_directory)
+  {
+    // A signal while gnuplot draws reaches it too (one process group): the
+    // run's results are whole, its figures are not, and both are said.
+    const StopSignals signals;
     draw_run_figures(o.out_dir, false);
+    stopped_while_drawing = signals.received();
+    if (stopped_while_drawing)
+      mark_figures_interrupted(o.out_dir, stopped_while_drawing);
+  }
   tell(deck, o, status);
+  if (stopped_while_drawing)
+  {
+    std::cerr << "demvv: " << signal_name(stopped_while_drawing) << " while drawing the figures: the run's results in "
+              << o.out_dir << " are complete, some figures may be missing; draw them with: demvv plot " << o.out_dir
+              << "\n";
+    return 128 + stopped_while_drawing;
+  }
   return status.exit_code();
 }
 

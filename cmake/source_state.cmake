@@ -8,14 +8,7 @@
 #                     by another build is never served.
 # Run at every build, so neither is ever stale; a file is only rewritten when
 # its content changes, so nothing rebuilds needlessly.
-function(write_if_changed path content)
-  if(EXISTS ${path})
-    file(READ ${path} old)
-  endif()
-  if(NOT "${old}" STREQUAL "${content}")
-    file(WRITE ${path} "${content}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/write_if_changed.cmake)
 
 execute_process(COMMAND git rev-parse --short=12 HEAD
   WORKING_DIRECTORY ${SRC} OUTPUT_VARIABLE sha OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)

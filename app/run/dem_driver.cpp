@@ -22,42 +22,6 @@ namespace demvv
 {
 namespace
 {
-// SIGINT and SIGTERM only raise this flag; the loop looks at it after every
-// step, so a run always stops between two whole steps.  SIGHUP (a closed
-// terminal or ssh connection) is taken as SIGTERM.
-volatile std::sig_atomic_t stop_signal = 0;
-
-extern "C" void request_stop(int signal) { stop_signal = signal == SIGHUP ? SIGTERM : signal; }
-
-/// Installs the stop handlers for the lifetime of a run and restores the
-/// previous ones afterwards (checks and tests run many DEM runs in one
-/// process).
-class StopSignals
-{
-public:
-  StopSignals()
-  {
-    stop_signal = 0;
-    previous_int_ = std::signal(SIGINT, request_stop);
-    previous_term_ = std::signal(SIGTERM, request_stop);
-    previous_hup_ = std::signal(SIGHUP, request_stop);
-  }
-  ~StopSignals()
-  {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-    std::signal(SIGHUP, previous_hup_);
-  }
-  StopSignals(const StopSignals &) = delete;
-  StopSignals &operator=(const StopSignals &) = delete;
-  int received() const { return stop_signal; }
-
-private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-  void (*previous_hup_)(int);
-};
-
 /// JSON has no NaN or infinity: such values are written as strings, so a
 /// checkpoint gives back every double exactly.
 nlohmann::json exact(double v)

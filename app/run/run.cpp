@@ -393,6 +393,30 @@ int thread_ceiling(const RunOptions &options)
   return options.most_threads > 0 ? std::min(options.most_threads, omp_get_num_procs()) : omp_get_num_procs();
 }
 
+namespace
+{
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void request_stop(int signal) { stop_signal = signal == SIGHUP ? SIGTERM : signal; }
+} // namespace
+
+StopSignals::StopSignals()
+{
+  stop_signal = 0;
+  previous_int_ = std::signal(SIGINT, request_stop);
+  previous_term_ = std::signal(SIGTERM, request_stop);
+  previous_hup_ = std::signal(SIGHUP, request_stop);
+}
+
+StopSignals::~StopSignals()
+{
+  std::signal(SIGINT, previous_int_);
+  std::signal(SIGTERM, previous_term_);
+  std::signal(SIGHUP, previous_hup_);
+}
+
+int StopSignals::received() const { return stop_signal; }
+
 int apply_threads(const RunOptions &options)
 {
   // More threads than the machine has cores never run faster, and a few

@@ -222,6 +222,27 @@ void record_fault(RunStatus &status, const dem::NumericalFault &fault);
 /// ODE output), simulated time [s] and message; no particle.
 void record_failure(RunStatus &status, const continuum::NumericalFailure &failure);
 
+/// SIGINT, SIGTERM and SIGHUP (a closed terminal or ssh connection, taken as
+/// SIGTERM) only raise a flag while one of these lives: the DEM loop looks
+/// at it after every step, so a run stops between two whole steps, and a
+/// command looks at it after drawing figures.  The previous handlers come
+/// back when it ends (checks and tests run many runs in one process).
+class StopSignals
+{
+public:
+  StopSignals();
+  ~StopSignals();
+  StopSignals(const StopSignals &) = delete;
+  StopSignals &operator=(const StopSignals &) = delete;
+  /// The signal received since construction (SIGINT or SIGTERM), 0 if none.
+  int received() const;
+
+private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+  void (*previous_hup_)(int);
+};
+
 /// The cores no other process is running on as this is called: every core
 /// less the other runnable tasks (the fourth field of /proc/loadavg), at
 /// least one.  Results do not depend on the thread count, only speed does:

@@ -5,7 +5,8 @@
 # linear law and with Burger's contacts (whose element state the checkpoint
 # must carry), by the command its message gives; a resume with another
 # deck or on another build is refused; a comparison says it cannot be
-# resumed.
+# resumed; a signal while the figures are drawn exits 143 with the
+# results whole and the summary saying which part was stopped.
 # Usage: cli_interrupt.sh DEMVV CASES_DIR
 set -u
 demvv=$1
@@ -94,4 +95,40 @@ code=$?
 [ $code -eq 130 ] || fail "the comparison: exit code $code, expected 130 ($(cat "$work/err_compare"))"
 grep -q "cannot be resumed" "$work/err_compare" || fail "the comparison's message offers a resume: $(cat "$work/err_compare")"
 grep -rq '"resume"' "$dir" --include=summary.json && fail "a part of the comparison offers a resume command"
+
+# A signal while the figures are drawn: a gnuplot that waits (a script on
+# the PATH, in front of the real one; later figures fail at once) holds the
+# run there; SIGTERM to demvv and that gnuplot, as a terminal sends it to
+# the whole process group, then gives exit 143, results whole, and a
+# summary that keeps "completed" and says the figures were interrupted and
+# how to draw them.
+mkdir -p "$work/slow_gnuplot"
+cat > "$work/slow_gnuplot/gnuplot" <<EOF
+#!/bin/sh
+[ -e "$work/drawing" ] && exit 1
+echo \$\$ > "$work/drawing.tmp" && mv "$work/drawing.tmp" "$work/drawing"
+exec sleep 30
+EOF
+chmod +x "$work/slow_gnuplot/gnuplot"
+dir=$work/drawing_run
+law=linear
+PATH="$work/slow_gnuplot:$PATH" run_box_in_background --out "$dir" --set run/duration=0.02 2>"$work/err_drawing" &
+pid=$!
+tries=0
+while [ ! -e "$work/drawing" ]; do
+  tries=$((tries + 1))
+  [ $tries -gt 600 ] && fail "the run did not start drawing its figures within a minute"
+  sleep 0.1
+done
+kill -s TERM $pid "$(cat "$work/drawing")"
+wait $pid
+code=$?
+[ $code -eq 143 ] || fail "a signal while drawing: exit code $code, expected 143 ($(cat "$work/err_drawing"))"
+grep -q "while drawing the figures" "$work/err_drawing" || fail "the message does not say the drawing was stopped"
+python3 - "$dir/summary.json" <<'EOF' || fail "the summary does not say the figures were interrupted"
+import json, sys
+s = json.load(open(sys.argv[1]))
+sys.exit(0 if s["status"]["state"] == "completed" and s["figures"]["interrupted_by"] == "SIGTERM" else 1)
+EOF
+passed=$((passed + 1))
 echo "$passed passed, 0 failed"
