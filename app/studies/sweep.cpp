@@ -549,7 +549,7 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
         s = series.insert(series.end(), StudySeries{a.series[p], {}, {}, {}, {}, {}});
       std::vector<double> values;
       for (std::size_t i = p * per_point; i < (p + 1) * per_point; ++i)
-        if (rows[i].status == "completed")
+        if (rows[i].status == "completed" && std::isfinite(rows[i].*q.value))
         {
           values.push_back(rows[i].*q.value);
           s->member_x.push_back(by_seed ? double(plan.first_seed + int(i)) : a.x[p]);
@@ -568,6 +568,10 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
         s->ci95.push_back(st.ci95);
       }
     }
+    // A quantity no member has (a sweep of a kind without a peak stress)
+    // gets no figure, rather than one gnuplot refuses.
+    if (std::none_of(series.begin(), series.end(), [](const StudySeries &s) { return !s.x.empty(); }))
+      continue;
     StudyAxes axes{q.name,           q.title + " over the sweep", by_seed ? "seed [-]" : a.label, q.axis, 1, q.scale,
                    !by_seed && a.log};
     for (StudySeries &s : series)

@@ -139,6 +139,14 @@ for s in 1 2; do
 done
 [ "$(cut -d, -f4 "$work/p/sweep.csv" | sort -u | wc -l)" -eq 4 ] || fail "two seeds gave one peak stress: $(cat "$work/p/sweep.csv")"
 
+# A sweep of a kind without a peak stress (a Burger's chain) draws no
+# figure of the quantities its members do not have, and says nothing
+# about them.
+"$demvv" sweep "$(dirname "$0")/../../cases/c01_burgers_ode_constant_velocity/case.prm" --vary loading/rate=1,2 --out "$work/ode" \
+  --quiet 2>"$work/err_ode" || fail "the sweep of a Burger's chain failed: $(cat "$work/err_ode")"
+grep -q "not drawn" "$work/err_ode" && fail "a sweep drew figures of quantities its members lack: $(cat "$work/err_ode")"
+[ -z "$(ls "$work/ode/plots" 2>/dev/null | grep peak_stress)" ] || fail "a Burger's chain sweep has a peak-stress figure"
+
 # Two MPI ranks share the members: the same results as one process.
 if [ -n "$mpirun" ]; then
   DEMVV_CACHE="$work/mpi_samples" timeout 300 $launch_np2 "$demvv" sweep "$work/packed.prm" --seeds 2 --out "$work/mpi_p" \
