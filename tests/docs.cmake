@@ -48,7 +48,9 @@ endif()
 # figures are declared in the file the recipe names, and the recipe names
 # the two tables and the figures' file.
 string(FIND "${_readme_text}" "**A deck kind.**" _at)
-string(SUBSTRING "${_readme_text}" ${_at} 1500 _recipe)
+string(SUBSTRING "${_readme_text}" ${_at} -1 _recipe)
+string(FIND "${_recipe}" "\n\n" _end)
+string(SUBSTRING "${_recipe}" 0 ${_end} _recipe)
 foreach(_named app/kinds/deck_kinds.cpp app/kinds/dem_kinds.cpp app/plot/run_figures.cpp app/run/dem_driver.h)
   string(FIND "${_recipe}" "`${_named}`" _found)
   if(_found LESS 0)
