@@ -51,40 +51,41 @@ void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
               << "; this kind of run cannot be resumed: run it again with --replace\n";
 }
 
-/// A signal stopped the drawing of a finished run's figures: summary.json
-/// keeps its state and says which figures may be missing and how to draw them.
-void mark_figures_interrupted(const std::string &run_dir, int signal)
+/// Sets one entry of a run's summary.json after the run wrote it; `unsaid`
+/// goes to stderr when the summary cannot be rewritten (the disk may be full).
+void amend_summary(const std::string &run_dir, const std::string &key, const nlohmann::json &value,
+                   const std::string &unsaid)
 {
   const std::string path = run_dir + "/summary.json";
   try
   {
     nlohmann::json summary = nlohmann::json::parse(read_file(path));
-    summary["figures"] = {{"interrupted_by", signal_name(signal)},
-                          {"note", "the drawing of the figures was stopped: some may be missing"},
-                          {"draw_with", "demvv plot " + run_dir}};
+    summary[key] = value;
     write_atomically(path, json_text(summary, 2) + "\n");
   }
   catch (const std::exception &)
   {
-    std::cerr << "demvv: " << path << " could not say that its figures were interrupted\n";
+    std::cerr << "demvv: " << path << " " << unsaid << "\n";
   }
+}
+
+/// A signal stopped the drawing of a finished run's figures: summary.json
+/// keeps its state and says which figures may be missing and how to draw them.
+void mark_figures_interrupted(const std::string &run_dir, int signal)
+{
+  amend_summary(run_dir, "figures",
+                {{"interrupted_by", signal_name(signal)},
+                 {"note", "the drawing of the figures was stopped: some may be missing"},
+                 {"draw_with", "demvv plot " + run_dir}},
+                "could not say that its figures were interrupted");
 }
 
 /// After an output could not be written, summary.json says so instead of
 /// "running" (if the disk still takes that much; otherwise stderr says it).
 void mark_output_failure(const std::string &run_dir, const std::string &why)
 {
-  const std::string path = run_dir + "/summary.json";
-  try
-  {
-    nlohmann::json summary = nlohmann::json::parse(read_file(path));
-    summary["status"] = {{"state", "output failed"}, {"message", why}};
-    write_atomically(path, json_text(summary, 2) + "\n");
-  }
-  catch (const std::exception &)
-  {
-    std::cerr << "demvv: " << path << " could not be marked as failed either: it may still say \"running\"\n";
-  }
+  amend_summary(run_dir, "status", {{"state", "output failed"}, {"message", why}},
+                "could not be marked as failed either: it may still say \"running\"");
 }
 
 /// Draws a run's figures; one line for what could not be drawn.

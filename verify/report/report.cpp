@@ -49,6 +49,17 @@ std::string Headline::text() const
   return line;
 }
 
+std::string Headline::counts() const
+{
+  std::size_t passed = 0, run = 0;
+  for (const Tally &t : categories)
+  {
+    passed += t.passed;
+    run += t.run;
+  }
+  return std::to_string(passed) + " of " + std::to_string(run) + " checks pass";
+}
+
 std::string banner(const nlohmann::json &provenance)
 {
   const auto field = [&](const char *key) { return provenance.value(key, std::string("unrecorded")); };
@@ -141,12 +152,9 @@ nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohma
 std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance)
 {
   std::ostringstream o;
-  std::size_t failed = 0;
-  for (const CheckRecord &r : records)
-    failed += r.pass() ? 0 : 1;
+  const Headline head = headline(records);
   o << "# demvv verification report\n\n"
-    << "**" << headline(records).text() << "** (" << records.size() - failed << " of " << records.size()
-    << " checks pass).\n\n"
+    << "**" << head.text() << "** (" << head.counts() << ").\n\n"
     << banner(provenance) << "\n\n"
     << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
        "verification* (how accurate is this solution), *calibration* (parameters fitted to data) and "

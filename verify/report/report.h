@@ -57,6 +57,8 @@ struct Headline
   /// One line: "code verification 14/14 pass; ...; validation 3/4 pass (1 model
   /// error found: ...)".
   std::string text() const;
+  /// "N of M checks pass", over every category.
+  std::string counts() const;
 };
 Headline headline(const std::vector<CheckRecord> &records);
 
