@@ -66,6 +66,11 @@ public:
   /// Whether the law keeps history of its own in the table's LawState slots.
   virtual bool keeps_law_state() const = 0;
 
+  /// Whether the energy ledger books every dissipation of the law (energy.h):
+  /// a law with history of its own (the Burger's dashpots) dissipates
+  /// energy that no ledger term holds, so its residual is that dissipation.
+  virtual bool books_every_dissipation() const = 0;
+
   /// Elastic energy stored in all ball-ball contacts [J].
   virtual double stored_energy(const ContactTable &table) const = 0;
 
@@ -184,6 +189,8 @@ public:
   void release_scratch() override { std::vector<PairLoad>().swap(loads_); }
 
   bool keeps_law_state() const override { return stateful; }
+
+  bool books_every_dissipation() const override { return !stateful; }
 
   double stored_energy(const ContactTable &table) const override
   {

@@ -162,7 +162,9 @@ void declare_motion(DeckSchema &s, const std::string &default_gravity, double de
   s.real("local damping", default_damping, 0, 1, "-",
          "PFC local non-viscous damping coefficient alpha (0 = undamped; 0.7 is PFC's default). "
          "Must be < 1.");
-  s.real("time step safety", 0.8, 0, 1, "-", "Fraction of the critical time step bound used by the automatic step.",
+  s.real("time step safety", 0.8, 0, 1, "-", "Fraction of the critical time step bound used by the automatic step; the bound is "
+         "2 / sqrt((1 + local damping) x the largest stiffness-to-mass bound), local damping "
+         "stiffening the fastest mode.",
          true);
   s.real("fixed time step", 0, 0, inf, "s", "Fixed time step; 0 selects the automatic step.");
   s.choice("unstable fixed step", "stop", {"stop", "run"},

@@ -467,7 +467,7 @@ public:
       {"last_time_step_s", sim.time_step()},
       {"critical_time_step_bound_s", sim.critical_time_step()},
       {"uncertainty",
-       {{"numerical_time_step", numerical_time_step_uncertainty(double(n), spec_.motion.time_step_safety)}}},
+       {{"numerical_time_step", numerical_time_step_uncertainty(double(n), spec_.motion.time_step_safety, spec_.motion.local_damping)}}},
       {"contact_resolution", resolved},
       {"neighbour_rebuilds", sim.neighbors().rebuilds()},
       {"energy_j",

@@ -90,7 +90,7 @@ public:
     if (!due_)
       return;
     protocol_.record(sim);
-    sim.check_energy_growth(runaway_energy_factor);
+    sim.check_energy_ledger(dem::LedgerLimits{});
   }
 
   bool last() const { return last_; }

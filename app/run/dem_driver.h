@@ -21,9 +21,10 @@
 //     exit code 2; summary.json says "refused");
 //   - fault capture: a NumericalFault ends the run with every output kept
 //     and the diagnostic in summary.json (exit code 3);
-//   - runaway energy: at every row the kinetic plus strain energy is held
-//     to runaway_energy_factor times the energy supplied
-//     (dem::Simulation::check_energy_growth), a fault like any other;
+//   - an energy ledger that doubts itself: at every row a runaway of the
+//     kinetic plus strain energy, local damping that gives energy back, or
+//     a broken balance (dem::LedgerLimits, dem::Simulation::
+//     check_energy_ledger) stops the run as a fault like any other;
 //   - interruption: SIGINT or SIGTERM end the run at the end of the current
 //     step; every output is flushed, summary.json says "interrupted" and a
 //     checkpoint is written (exit code 130 or 143);
@@ -56,17 +57,6 @@ namespace demvv
 /// few million particle-steps per second per core: 4.8e6 measured on one
 /// core for a 100000-ball sc bench, 2.2e6 for fcc).
 constexpr double max_run_steps = 1e12;
-
-/// Kinetic plus strain energy above this multiple of the energy supplied
-/// stops a run as a numerical fault (dem::Simulation::check_energy_growth).
-/// A stable run holds them near the supply (dissipation only removes
-/// energy; the strain energy of a contact resolved by the default step
-/// overshoots the scheme's invariant by less than a factor 3), so a factor
-/// 10 stops no valid run, while an unstable step multiplies the energy
-/// every step and passes it within a few dozen steps.  A fixed step within
-/// 5 % of the true stability limit (omega dt > 1.9) is stopped too: it is
-/// stable, but its contact forces are off by a factor of ten.
-constexpr double runaway_energy_factor = 10;
 
 /// The outputs section every DEM kind shares.
 struct DemOutputSpec

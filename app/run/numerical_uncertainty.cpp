@@ -18,7 +18,8 @@ namespace
 nlohmann::json not_estimated(const std::string &why) { return {{"estimated", false}, {"why", why}}; }
 } // namespace
 
-nlohmann::json numerical_time_step_uncertainty(double balls, double safety, const std::string &study_dir)
+nlohmann::json numerical_time_step_uncertainty(double balls, double safety, double local_damping,
+                                               const std::string &study_dir)
 {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -49,19 +50,29 @@ nlohmann::json numerical_time_step_uncertainty(double balls, double safety, cons
     const nlohmann::json study =
       parse_json_input(read_input(best, "time-step study", max_summary_bytes), best, "time-step study");
     const nlohmann::json &quantities = study.at("quantities");
-    // The smallest studied safety at or above the run's.
+    // Steps as fractions of the undamped bound (header note); the finest
+    // studied level at or above the run's step.
+    const double step_fraction = safety / std::sqrt(1 + local_damping);
+    const double study_damping =
+      study.value("safety_bound", "") == "damped" ? study.at("local_damping").get<double>() : 0.0;
+    const auto level_fraction = [&](const nlohmann::json &l) {
+      return l.at("safety").get<double>() / std::sqrt(1 + study_damping);
+    };
     const nlohmann::json &peak_levels = quantities.at("peak_stress_pa").at("levels");
     std::size_t level = peak_levels.size();
     for (std::size_t i = 0; i < peak_levels.size(); ++i)
-      if (peak_levels[i].at("safety").get<double>() >= safety * (1 - 1e-12))
+      if (level_fraction(peak_levels[i]) >= step_fraction * (1 - 1e-12))
         level = i;
     if (level == peak_levels.size())
-      return not_estimated("the time-step safety " + std::to_string(safety) +
-                           " is coarser than every level of the study " + best);
+      return not_estimated("the time step (safety " + format_number(safety) + " under local damping " +
+                           format_number(local_damping) + ", " + format_number(step_fraction) +
+                           " of the undamped bound) is coarser than every level of the study " + best);
     nlohmann::json block = {{"estimated", true},
                             {"study", fs::path(best).filename().string()},
                             {"study_balls", best_balls},
+                            {"step_fraction_of_undamped_bound", step_fraction},
                             {"study_safety", peak_levels[level].at("safety")},
+                            {"study_step_fraction_of_undamped_bound", level_fraction(peak_levels[level])},
                             {"study_seeds", study.at("seeds")},
                             {"study_build", study.at("provenance").at("sources_sha256")},
                             {"study_date", study.at("provenance").at("started_utc")},

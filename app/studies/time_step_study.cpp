@@ -369,8 +369,11 @@ int command_time_step(const TimeStepStudyOptions &o)
       }
     analyses.push_back(analyse_time_step(safety, values));
   }
-  const double default_safety = Deck::from_file(deck_kinds(), o.base_deck, o.sets).real(safety_key);
+  const Deck base_deck = Deck::from_file(deck_kinds(), o.base_deck, o.sets);
+  const double default_safety = base_deck.real(safety_key);
   nlohmann::json record = {
+    {"safety_bound", "damped"},
+    {"local_damping", base_deck.real("motion/local damping")},
     {"base_deck", o.base_deck},
     {"sets", o.sets},
     {"seeds", o.seeds},

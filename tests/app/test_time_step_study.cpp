@@ -117,7 +117,7 @@ TEST_CASE("time-step study: a bulk run's u_num comes from the study that applies
 
   const auto peak_bound = [&](double balls, double safety)
   {
-    const nlohmann::json u = demvv::numerical_time_step_uncertainty(balls, safety, dir.string());
+    const nlohmann::json u = demvv::numerical_time_step_uncertainty(balls, safety, 0, dir.string());
     return u.value("estimated", false) ? u.at("peak_stress_pa").at("u_num_bound_relative_95").get<double>() : -1.0;
   };
   CHECK(peak_bound(1000, 0.8) == 0.04);
@@ -128,17 +128,45 @@ TEST_CASE("time-step study: a bulk run's u_num comes from the study that applies
   CHECK(peak_bound(1000, 0.9) == -1.0); // coarser than every level: not estimated
   CHECK(peak_bound(54, 0.8) == -1.0);   // no study within a factor of two
   CHECK(peak_bound(2500, 0.8) == -1.0);
-  const nlohmann::json u = demvv::numerical_time_step_uncertainty(1000, 0.8, dir.string());
+  const nlohmann::json u = demvv::numerical_time_step_uncertainty(1000, 0.8, 0, dir.string());
   CHECK(u.at("peak_stress_pa").at("u_num_relative").get<double>() == 0.02);
   CHECK(u.at("study_build") == "abc");
-  CHECK_FALSE(demvv::numerical_time_step_uncertainty(54, 0.8, dir.string()).at("why").get<std::string>().empty());
+  CHECK_FALSE(demvv::numerical_time_step_uncertainty(54, 0.8, 0, dir.string()).at("why").get<std::string>().empty());
+
+  // Steps compare as fractions of the undamped bound.  This study has no
+  // "safety_bound": its safeties were of the undamped bound.  A run at 0.8
+  // under local damping 0.7 steps 0.8 / sqrt(1.7) = 0.61 of it: covered by
+  // the 0.8 level; at 0.6 (0.46 of it) still by 0.8, at 0.5 (0.38) by 0.4.
+  const auto damped_bound = [&](double safety, double damping, const std::filesystem::path &folder)
+  {
+    const nlohmann::json b = demvv::numerical_time_step_uncertainty(1000, safety, damping, folder.string());
+    return b.value("estimated", false) ? b.at("peak_stress_pa").at("u_num_bound_relative_95").get<double>() : -1.0;
+  };
+  CHECK(damped_bound(0.8, 0.7, dir) == 0.04);
+  CHECK(damped_bound(0.6, 0.7, dir) == 0.04);
+  CHECK(damped_bound(0.5, 0.7, dir) == 0.03);
+  CHECK(u.at("step_fraction_of_undamped_bound").get<double>() == 0.8);
+  // A study taken on the damped bound (local damping 0.7): its 0.8 level is
+  // 0.61 of the undamped bound, so an undamped run at 0.8 is coarser than it.
+  const std::filesystem::path damped_dir = dir / "damped";
+  std::filesystem::create_directories(damped_dir);
+  nlohmann::json damped_study = study;
+  damped_study["safety_bound"] = "damped";
+  damped_study["local_damping"] = 0.7;
+  std::ofstream(damped_dir / "results_1000.json") << damped_study.dump();
+  CHECK(damped_bound(0.8, 0.7, damped_dir) == 0.04);
+  CHECK(damped_bound(0.4, 0.7, damped_dir) == 0.03);
+  CHECK(damped_bound(0.8, 0, damped_dir) == -1.0);
+  CHECK(damped_bound(0.6, 0, damped_dir) == 0.04);
 }
 
 TEST_CASE("time-step study: the recorded studies are read as they are", "[verify][time_step]")
 {
   // The studies kept in cases/s02_time_step_study: what a 1000-ball run at
-  // the default safety states is the 0.8 level of results_1000.json.
-  const nlohmann::json u = demvv::numerical_time_step_uncertainty(1000, 0.8);
+  // the default safety and damping states is the 0.8 level of
+  // results_1000.json (taken on the undamped bound: 0.8 of the damped one
+  // is 0.61 of it, finer than 0.8 and coarser than 0.4).
+  const nlohmann::json u = demvv::numerical_time_step_uncertainty(1000, 0.8, 0.7);
   REQUIRE(u.value("estimated", false));
   std::ifstream in(demvv::time_step_study_dir() + "/results_1000.json");
   const nlohmann::json study = nlohmann::json::parse(in);

@@ -264,7 +264,9 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
     (slopes.size() == 1 && slopes.at(0).is_number() ? slopes.at(0).get<double>() : std::nan("")) /
     number_at(target, "fitted_mean");
   const double input_relative = std::abs(elasticity) * number_at(c.at("parameters").at(0), "relative_standard_error");
-  const double safety = Deck::from_file(deck_kinds(), s.deck, s.sample).real("motion/time step safety");
+  const Deck validation_deck = Deck::from_file(deck_kinds(), s.deck, s.sample);
+  const double safety = validation_deck.real("motion/time step safety");
+  const double damping = validation_deck.real("motion/local damping");
   std::vector<std::vector<double>> x(2), y(2), bar(2), strain(2), strain_bar(2), modulus(2), modulus_bar(2);
   std::vector<double> budget_x;
   std::vector<std::vector<double>> budget(4);
@@ -286,7 +288,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
       const EnsembleStatistics st = ensemble_statistics(peaks);
       const double mean = st.mean;
       const double law = law_peak(conditions[k]);
-      const nlohmann::json numerical = numerical_time_step_uncertainty(balls, safety);
+      const nlohmann::json numerical = numerical_time_step_uncertainty(balls, safety, damping);
       const bool num_known = numerical.value("estimated", false);
       const ValidationBudget u{num_known ? mean * numerical.at("peak_stress_pa").at("u_num_relative").get<double>()
                                          : 0.0,
