@@ -24,7 +24,6 @@ namespace demvv
 {
 namespace
 {
-const char *signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
 
 /// The one line a finished run leaves on stderr.
 void tell(const DeckRecord &deck, const RunOptions &o, const RunStatus &status)
@@ -114,6 +113,7 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
                     " run has no checkpoint to pause at or resume from: expected it only "
                     "for scene and uniaxial decks (or a run without it)");
   std::unique_ptr<DirectoryLock> lock; // held until the run, its figures and its summary are done
+  ParsedRun parsed;                    // the claim's parse, run below (parsed once)
   on_rank_zero_for_all(
     kind->on_every_mpi_rank,
     [&]
@@ -125,7 +125,7 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
         if (!deck.path().empty())
           inputs.push_back(std::filesystem::weakly_canonical(std::filesystem::absolute(deck.path())).string());
         claim_run_directory(
-          o.out_dir, o.replace, [&] { kind->parse(deck); }, inputs);
+          o.out_dir, o.replace, [&] { parsed = kind->parse(deck); }, inputs);
       }
       else if (!marked_as(o.out_dir, "run"))
         throw DeckError("--resume '" + o.out_dir + "': holds no demvv marker (" + ownership_marker +
@@ -137,11 +137,23 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   RunStatus status;
   try
   {
-    status = kind->run(deck, o);
+    if (!parsed) // resumed, or a rank that left the claim to rank 0
+      parsed = kind->parse(deck);
+    status = parsed(o);
   }
   catch (const OutputError &e)
   {
     mark_output_failure(o.out_dir, e.what());
+    throw;
+  }
+  catch (const Interrupted &e)
+  {
+    // A run stopped before its first step (preparing its sample) may have
+    // written no summary yet: then there is nothing that says "running".
+    if (std::filesystem::exists(o.out_dir + "/summary.json"))
+      amend_summary(o.out_dir, "status",
+                    {{"state", "interrupted"}, {"signal", signal_name(e.signal)}, {"message", e.what()}},
+                    "could not be marked as interrupted: it may still say \"running\"");
     throw;
   }
   int stopped_while_drawing = 0;

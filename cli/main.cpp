@@ -318,6 +318,10 @@ int main(int argc, char **argv)
   {
     return refuse(std::string(e.what()) + "; every row and file written before is complete", 4);
   }
+  catch (const demvv::Interrupted &e)
+  {
+    return refuse(e.what(), 128 + e.signal);
+  }
   catch (const std::runtime_error &e)
   {
     return refuse(e.what(), 2);

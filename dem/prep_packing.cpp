@@ -35,7 +35,11 @@ std::string fmt(double v)
 class Preparation
 {
 public:
-  Preparation(const PackingSettings &s, const std::function<void(const std::string &)> &log) : s_(s), log_(log) {}
+  Preparation(const PackingSettings &s, const std::function<void(const std::string &)> &log,
+              const std::function<bool()> &stop_requested)
+    : s_(s), log_(log), stop_requested_(stop_requested)
+  {
+  }
 
   PreparedSample run();
 
@@ -59,6 +63,14 @@ private:
     if (log_)
       log_(line);
   }
+  /// Throws PreparationStopped when a stop was asked for (looked at every
+  /// 128 steps: a step of 12 000 balls is about a millisecond).
+  void poll_stop(long cycle) const
+  {
+    if (cycle % 128 == 0 && stop_requested_ && stop_requested_())
+      throw PreparationStopped("sample preparation stopped at step " + std::to_string(sim_->steps()) +
+                               " (cycle " + std::to_string(cycle) + " of a stage): a stop was asked for");
+  }
   void record(const StageReport &st)
   {
     report_.stages.push_back(st);
@@ -69,6 +81,7 @@ private:
 
   const PackingSettings &s_;
   const std::function<void(const std::string &)> &log_;
+  const std::function<bool()> &stop_requested_;
   CellSize size_{};
   Specimen cell_;
   std::unique_ptr<Simulation> sim_;
@@ -218,7 +231,10 @@ void Preparation::grow()
     for (Vec3 &w : sim_->particles().spin)
       w.setZero();
     for (long c = 0; c < s_.growth_cycles; ++c)
+    {
+      poll_stop(c);
       sim_->step();
+    }
   }
   sim_->compute_forces();
   record(measure("generate: balls grown from R/2 to R in " + std::to_string(s_.growth_stages) + " stages",
@@ -293,13 +309,14 @@ StageReport Preparation::equilibrate(const std::string &name, bool servo, double
   long cycles = 0;
   while (servo && cycles < s_.max_cycles && !stage.servo_on_target())
   {
+    poll_stop(cycles);
     sim_->step(stage);
     ++cycles;
   }
   const long servo_cycles = cycles;
   stage.start_settling();
   while (cycles < servo_cycles + s_.max_cycles && sim_->step(stage))
-    ++cycles;
+    poll_stop(++cycles);
   const bool converged = stage.settled() && (!servo || stage.servo_on_target());
   stop_walls(*sim_, cell_);
   sim_->compute_forces();
@@ -567,9 +584,10 @@ CellSize cell_size(const PackingSettings &s)
   return c;
 }
 
-PreparedSample prepare_sample(const PackingSettings &settings, const std::function<void(const std::string &)> &log)
+PreparedSample prepare_sample(const PackingSettings &settings, const std::function<void(const std::string &)> &log,
+                              const std::function<bool()> &stop_requested)
 {
-  Preparation p(settings, log);
+  Preparation p(settings, log, stop_requested);
   return p.run();
 }
 } // namespace dem

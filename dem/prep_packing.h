@@ -124,6 +124,13 @@ public:
   std::string setting; ///< which setting is at fault
 };
 
+/// A preparation ended early because its caller asked it to stop (a signal).
+class PreparationStopped : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
 struct PreparedSample
 {
   std::unique_ptr<Simulation> sim; ///< lateral wall removed, bonded, settled
@@ -131,9 +138,11 @@ struct PreparedSample
   PackingReport report;
 };
 
-/// Runs the whole procedure.  `log` receives one line per stage.
-PreparedSample prepare_sample(const PackingSettings &settings,
-                              const std::function<void(const std::string &)> &log = {});
+/// Runs the whole procedure.  `log` receives one line per stage;
+/// `stop_requested`, when given, is asked every 128 steps whether to stop
+/// (then PreparationStopped is thrown).
+PreparedSample prepare_sample(const PackingSettings &settings, const std::function<void(const std::string &)> &log = {},
+                              const std::function<bool()> &stop_requested = {});
 
 /// The cell geometry of eq. 5.1 for the settings: (N, D, H); throws
 /// PackingError for an impossible request.

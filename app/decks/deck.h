@@ -19,6 +19,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -65,9 +66,14 @@ struct RunStatus;
 struct Figure;
 class Deck;
 
+/// A deck parsed into its kind's typed spec, ready to run: the spec lives in
+/// the closure, so that a run parses its deck once (the parse that claims
+/// the run directory is the one that runs).
+using ParsedRun = std::function<RunStatus(const RunOptions &)>;
+
 /// One deck kind, whole: its keyword, what it is for (one line), its
-/// schema, the parse into its typed spec (validation only: throws
-/// DeckError, runs nothing), the run, and the figures `demvv run` and
+/// schema, the parse into its typed spec (throws DeckError, runs nothing)
+/// that gives the run, and the figures `demvv run` and
 /// `demvv plot` draw from its run directory.  `demvv run`, `demvv
 /// defaults`, `demvv plot` and `--help` all read one table of these
 /// (app/kinds/deck_kinds.cpp), handed to the deck reader.  A kind that runs
@@ -79,8 +85,7 @@ struct DeckKind
   std::string_view name;
   std::string_view summary;
   void (*declare)(DeckSchema &);
-  void (*parse)(const Deck &);
-  RunStatus (*run)(const Deck &, const RunOptions &);
+  ParsedRun (*parse)(const Deck &);
   /// Appends the figures of a run directory of this kind (its summary.json
   /// already read); nullptr for a kind without figures.
   void (*figures)(const std::string &run_dir, const nlohmann::json &summary, std::vector<Figure> &out) = nullptr;

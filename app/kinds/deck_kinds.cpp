@@ -1,8 +1,8 @@
 // THE table of deck kinds (deck_kinds.h): the DEM rows of dem_kinds.cpp,
 // then the continuum and micro-macro rows here.  To add a kind, write its
-// file in app/kinds/ (declare, a typed spec with its parse, run) and its
-// figures in app/plot/run_figures.cpp, and add one row here (or in
-// dem_kinds.cpp for a DEM kind).
+// file in app/kinds/ (declare, a typed spec with its parse, run on the
+// spec) and its figures in app/plot/run_figures.cpp, and add one row here
+// (or in dem_kinds.cpp for a DEM kind).
 #include "app/kinds/deck_kinds.h"
 #include "app/kinds/compare.h"
 #include "app/kinds/continuum_cylinder.h"
@@ -21,17 +21,16 @@ const DeckKinds &deck_kinds()
       {"burgers_ode",
        "one Burger's chain (contact or material point) under a prescribed history, SUNDIALS CVODE "
        "beside its closed form",
-       &declare_burgers_ode, [](const Deck &d) { parse_burgers_ode(d); },
-       [](const Deck &d, const RunOptions &o) { return run_burgers_ode(d, o).status; }, &burgers_ode_run_figures},
+       &declare_burgers_ode, [](const Deck &d) { return parsed_run(parse_burgers_ode(d), &run_burgers_ode); },
+       &burgers_ode_run_figures},
       {"cylinder", "viscoelastic continuum cylinder (deal.II) compressed between frictionless or bonded platens",
-       &declare_cylinder, [](const Deck &d) { parse_cylinder(d); },
-       [](const Deck &d, const RunOptions &o) { return run_cylinder(d, o).status; }, &cylinder_run_figures, true},
+       &declare_cylinder, [](const Deck &d) { return parsed_run(parse_cylinder(d), &run_cylinder); },
+       &cylinder_run_figures, true},
       {"compare", "DEM bulk beside the continuum cylinder built from the same contacts, same sample and history",
-       &declare_compare, [](const Deck &d) { parse_compare(d); },
-       [](const Deck &d, const RunOptions &o) { return run_compare(d, o).status; }, &compare_run_figures},
+       &declare_compare, [](const Deck &d) { return parsed_run(parse_compare(d), &run_compare); },
+       &compare_run_figures},
       {"mms", "manufactured-solution convergence study of the continuum cylinder in space or time", &declare_mms,
-       [](const Deck &d) { parse_mms(d); },
-       [](const Deck &d, const RunOptions &o) { return run_mms_deck(d, o).status; }, &mms_run_figures, true},
+       [](const Deck &d) { return parsed_run(parse_mms(d), &run_mms_deck); }, &mms_run_figures, true},
     };
     all.insert(all.end(), continuum.begin(), continuum.end());
     return all;

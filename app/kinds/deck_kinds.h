@@ -1,6 +1,6 @@
 // The tables of deck kinds: one whole row per kind (keyword, one-line
-// summary, schema, parse, run, figures, whether it runs on every MPI rank,
-// whether it pauses).  `demvv run`, `demvv defaults`, `demvv plot` and
+// summary, schema, the parse that gives the run, figures, whether it runs
+// on every MPI rank, whether it pauses).  `demvv run`, `demvv defaults`, `demvv plot` and
 // `--help` read deck_kinds(); the deck reader is handed a table and knows
 // no other.  dem_deck_kinds() is its DEM part (scene, prepare, uniaxial),
 // the rows the fuzz targets read decks and run directories with: the same
@@ -8,9 +8,22 @@
 #pragma once
 
 #include "app/decks/deck.h"
+#include "app/run/run.h"
+
+#include <memory>
+#include <utility>
 
 namespace demvv
 {
+/// A kind's run on its parsed spec (DeckKind::parse): the spec is kept,
+/// shared, in the closure through which the run is called.
+template <class Spec, class Result>
+ParsedRun parsed_run(Spec spec, Result (*run)(const Spec &, const RunOptions &))
+{
+  auto kept = std::make_shared<const Spec>(std::move(spec));
+  return [kept, run](const RunOptions &options) { return run(*kept, options).status; };
+}
+
 /// The DEM kinds (app/kinds/dem_kinds.cpp).
 const DeckKinds &dem_deck_kinds();
 

@@ -135,36 +135,58 @@ dem::PackingSettings parse_prepare(const Deck &deck)
   return settings;
 }
 
+PrepareSpec parse_prepare_spec(const Deck &deck)
+{
+  return {deck,
+          parse_prepare(deck),
+          deck.text("title"),
+          deck.integer("sample/seed"),
+          deck.real("preparation/stress target"),
+          deck.flag("output/paraview")};
+}
+
 PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
 {
+  return run_prepare(parse_prepare_spec(deck), options);
+}
+
+PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options)
+{
   const int threads = apply_threads(options);
-  const dem::PackingSettings settings = parse_prepare(deck);
+  const DeckRecord &deck = spec.deck;
+  const dem::PackingSettings &settings = spec.settings;
 
   std::unique_ptr<RunDirectory> dir;
   if (!options.out_dir.empty())
-    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, deck.integer("sample/seed"));
+    dir = std::make_unique<RunDirectory>(options.out_dir, deck, threads, spec.seed);
   std::vector<std::string> log;
   const auto say = [&](const std::string &line)
   {
     log.push_back(line);
     if (options.progress)
-      std::cerr << "prepare " << deck.name() << ": " << line << "\n";
+      std::cerr << "prepare " << deck.name << ": " << line << "\n";
   };
 
   PrepareResult result;
   const auto start = std::chrono::steady_clock::now();
   dem::PreparedSample prepared;
+  const StopSignals signals;
   try
   {
-    prepared = dem::prepare_sample(settings, say);
+    prepared = dem::prepare_sample(settings, say, [&] { return signals.received() != 0; });
   }
   catch (const dem::NumericalFault &f)
   {
     record_fault(result.status, f);
   }
+  catch (const dem::PreparationStopped &e)
+  {
+    result.status.interrupted_by = signals.received();
+    result.status.message = std::string(e.what()) + "; a preparation has no checkpoint: run it again";
+  }
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  nlohmann::json summary = {{"kind", "prepare"}, {"title", deck.text("title")}, {"log", log}};
-  if (result.status.fault)
+  nlohmann::json summary = {{"kind", "prepare"}, {"title", spec.title}, {"log", log}};
+  if (result.status.fault || result.status.interrupted_by)
   {
     summary["status"] = result.status.to_json();
     if (dir)
@@ -176,18 +198,18 @@ PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
   sample.snapshot = prepared.sim->snapshot();
   sample.cell = std::move(prepared.cell);
   sample.contact_law = std::string(prepared.sim->model().name());
-  sample.seed = deck.integer("sample/seed");
-  sample.title = deck.text("title");
+  sample.seed = spec.seed;
+  sample.title = spec.title;
   sample.preparation = report_json(prepared.report);
-  sample.provenance = provenance(threads, sample.seed, deck.resolved());
+  sample.provenance = provenance(threads, sample.seed, deck.resolved);
   summary["status"] = result.status.to_json();
   summary["preparation"] = sample.preparation;
-  summary["stress_target_pa"] = deck.real("preparation/stress target");
+  summary["stress_target_pa"] = spec.stress_target_pa;
   summary["sample_file"] = "sample.json";
   if (dir)
   {
     write_sample(dir->path("sample.json"), sample);
-    if (deck.flag("output/paraview"))
+    if (spec.paraview)
       ParaviewWriter(dir->path("paraview")).write_frame(*prepared.sim, prepared.sim->time());
     dir->write_summary(summary);
   }
@@ -342,6 +364,10 @@ std::string cached_sample_file(const std::string &path, const std::vector<std::s
   omp_set_num_threads(caller);
   if (r.status.fault)
     throw std::runtime_error(path + ": sample preparation stopped: " + r.status.diagnostic());
+  if (r.status.interrupted_by)
+    throw Interrupted(path + ": " + signal_name(r.status.interrupted_by) + " while preparing the sample in " + dir +
+                        " (a preparation has no checkpoint: the next run prepares it again)",
+                      r.status.interrupted_by);
   try
   {
     prune_sample_cache(sample_cache_dir(path), cached_builds, cache_grace);

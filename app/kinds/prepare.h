@@ -16,6 +16,7 @@
 #include "app/decks/deck.h"
 #include "app/io/sample_file.h"
 #include "app/run/run.h"
+#include "dem/prep_packing.h"
 
 #include <chrono>
 #include <cstddef>
@@ -36,8 +37,25 @@ struct PrepareResult
 /// refused here, before any file is written).
 dem::PackingSettings parse_prepare(const Deck &deck);
 
-/// Prepares the sample of a prepare deck; with options.out_dir set, writes
-/// the run directory (sample.json among it).
+/// A prepare deck parsed: the preparation and what the run directory keeps
+/// of the deck.
+struct PrepareSpec
+{
+  DeckRecord deck;
+  dem::PackingSettings settings;
+  std::string title;
+  long long seed = 0;          ///< sample/seed
+  double stress_target_pa = 0; ///< preparation/stress target [Pa]
+  bool paraview = false;       ///< output/paraview
+};
+
+/// parse_prepare, kept with the deck's record.
+PrepareSpec parse_prepare_spec(const Deck &deck);
+
+/// Prepares the sample of a parsed prepare deck; with options.out_dir set,
+/// writes the run directory (sample.json among it).
+PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options);
+/// parse_prepare then run_prepare.
 PrepareResult run_prepare(const Deck &deck, const RunOptions &options);
 
 /// The folder where the samples of prepare decks are cached: $DEMVV_CACHE

@@ -22,13 +22,17 @@
 
 namespace demvv
 {
+const char *signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
 nlohmann::json RunStatus::to_json() const
 {
   const char *state = fault ? "numerical fault" : interrupted_by ? "interrupted" : paused ? "paused" : "completed";
   nlohmann::json j = {
     {"state", state}, {"interrupted", interrupted_by != 0 || paused}, {"steps", steps}, {"wall_seconds", wall_seconds}};
   if (interrupted_by)
-    j["signal"] = interrupted_by == SIGINT ? "SIGINT" : interrupted_by == SIGTERM ? "SIGTERM" : "signal";
+    j["signal"] = signal_name(interrupted_by);
+  if (interrupted_by && !message.empty())
+    j["message"] = message;
   if (fault)
     j["fault"] = {{"step", step}, {"time_s", time}, {"particle", particle}, {"message", message}};
   return j;

@@ -222,6 +222,18 @@ void record_fault(RunStatus &status, const dem::NumericalFault &fault);
 /// ODE output), simulated time [s] and message; no particle.
 void record_failure(RunStatus &status, const continuum::NumericalFailure &failure);
 
+/// "SIGINT", "SIGTERM" or "a signal".
+const char *signal_name(int signal);
+
+/// A signal stopped work that has no checkpoint (a sample's preparation
+/// before the run that needs it): the command ends with 128 + signal.
+class Interrupted : public std::runtime_error
+{
+public:
+  Interrupted(const std::string &what, int signal) : std::runtime_error(what), signal(signal) {}
+  int signal; ///< SIGINT or SIGTERM
+};
+
 /// SIGINT, SIGTERM and SIGHUP (a closed terminal or ssh connection, taken as
 /// SIGTERM) only raise a flag while one of these lives: the DEM loop looks
 /// at it after every step, so a run stops between two whole steps, and a

@@ -754,7 +754,7 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
         member_run.out_dir = dir;
         member_run.progress = false;
         member_run.resumable_alone = false;
-        const RunStatus status = kind->run(Deck::from_file(deck_kinds(), plan.base_deck, m.overrides), member_run);
+        const RunStatus status = kind->parse(Deck::from_file(deck_kinds(), plan.base_deck, m.overrides))(member_run);
         interrupted = status.interrupted_by;
         if (status.fault)
           std::cerr << "demvv: member " << m.label << ": " << status.diagnostic() << "\n";

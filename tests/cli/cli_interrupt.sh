@@ -6,7 +6,9 @@
 # must carry), by the command its message gives; a resume with another
 # deck or on another build is refused; a comparison says it cannot be
 # resumed; a signal while the figures are drawn exits 143 with the
-# results whole and the summary saying which part was stopped.
+# results whole and the summary saying which part was stopped; a signal
+# while a sample is prepared ends the preparation (and the test waiting for
+# it) with exit 143 and an honest summary.
 # Usage: cli_interrupt.sh DEMVV CASES_DIR
 set -u
 demvv=$1
@@ -130,5 +132,55 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 sys.exit(0 if s["status"]["state"] == "completed" and s["figures"]["interrupted_by"] == "SIGTERM" else 1)
 EOF
+passed=$((passed + 1))
+# A signal while a sample is prepared (a preparation has no checkpoint): a
+# prepare run exits 143 with summary.json saying "interrupted" and that it
+# must run again; a test whose sample deck is being prepared for it (an
+# empty cache) exits 143 too, saying what was stopped, with no summary that
+# says "running" (it stopped before its first step, so it wrote none), the
+# cache's preparation saying "interrupted" and no sample in the cache.  A preparation takes tens of seconds (1000
+# balls) or minutes (6000); the signal goes a second after it has begun (its
+# run directory's summary.json exists).
+signal_during_preparation() { # NAME, FOLDER of the preparation, then demvv's arguments
+  name=$1
+  folder=$2
+  shift 2
+  ( exec "$demvv" "$@" 2>"$work/err_$name" ) &
+  pid=$!
+  tries=0
+  while [ -z "$(find "$folder" -name summary.json 2>/dev/null)" ]; do
+    tries=$((tries + 1))
+    [ $tries -gt 600 ] && fail "$name: the preparation did not begin within a minute ($(cat "$work/err_$name"))"
+    sleep 0.1
+  done
+  sleep 1
+  kill -s TERM $pid
+  wait $pid
+  code=$?
+  [ $code -eq 143 ] || fail "$name: exit code $code, expected 143 ($(cat "$work/err_$name"))"
+}
+signal_during_preparation prepare "$work/prepare_run" run "$cases/p03_sample_1000/case.prm" --out "$work/prepare_run" --threads 1
+python3 - "$work/prepare_run/summary.json" <<'EOF' || fail "the prepare run's summary does not say it was interrupted"
+import json, sys
+s = json.load(open(sys.argv[1]))["status"]
+sys.exit(0 if s["state"] == "interrupted" and s["signal"] == "SIGTERM" and "run it again" in s["message"] else 1)
+EOF
+export DEMVV_CACHE="$work/cache"
+signal_during_preparation test "$work/cache" run "$cases/t61_damage/case.prm" --out "$work/test_run" --threads 1
+unset DEMVV_CACHE
+grep -q "while preparing the sample" "$work/err_test" || fail "the test's message does not say what was stopped: $(cat "$work/err_test")"
+python3 - "$work/test_run/summary.json" <<'EOF' || fail "the test's summary says it is running"
+import json, os, sys
+if not os.path.exists(sys.argv[1]):
+    sys.exit(0)  # stopped before its first step: no summary yet
+s = json.load(open(sys.argv[1]))["status"]
+sys.exit(0 if s["state"] == "interrupted" and s["signal"] == "SIGTERM" else 1)
+EOF
+python3 - "$work/cache" <<'EOF' || fail "the cache's preparation does not say it was interrupted"
+import glob, json, sys
+s = [json.load(open(f))["status"] for f in glob.glob(sys.argv[1] + "/*/summary.json")]
+sys.exit(0 if len(s) == 1 and s[0]["state"] == "interrupted" else 1)
+EOF
+[ -z "$(find "$work/cache" -name sample.json)" ] || fail "an interrupted preparation left a sample in the cache"
 passed=$((passed + 1))
 echo "$passed passed, 0 failed"
