@@ -450,6 +450,8 @@ public:
       {"max_breakage_rate_per_unit_strain", has_breaks ? nlohmann::json(break_rate) : nlohmann::json(nullptr)},
       {"initial_modulus_pa", modulus.points >= 2 ? nlohmann::json(modulus.slope) : nlohmann::json(nullptr)},
       {"poisson_ratio", poisson.points >= 2 ? nlohmann::json(poisson.slope) : nlohmann::json(nullptr)},
+      {"initial_modulus_intercept_pa",
+       modulus.points >= 2 ? nlohmann::json(modulus.intercept) : nlohmann::json(nullptr)},
       {"fit_window_axial_strain", {spec_.fit_from, spec_.fit_to}},
       {"fit_points", modulus.points},
       {"fit_r_squared", {{"modulus", modulus.r_squared}, {"poisson", poisson.r_squared}}},

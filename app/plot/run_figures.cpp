@@ -8,7 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <sys/stat.h>
 
@@ -34,8 +36,16 @@ struct RunTable
 
   RunTable(const std::string &run_dir, const std::string &file) : from_plots("../" + file)
   {
-    if (exists(run_dir + "/" + file))
-      table = std::make_unique<CsvTable>(CsvTable::read(run_dir + "/" + file, CsvTable::Values::any_number));
+    // A run directory may come from anyone: its tables are read only as
+    // regular files of its own, never through a link to a file elsewhere.
+    const std::string path = run_dir + "/" + file;
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::symlink_status(path, ec);
+    if (ec || !std::filesystem::exists(st))
+      return;
+    if (!std::filesystem::is_regular_file(st))
+      throw DeckError(path + ": a link or a special file, not a table the run wrote: expected a regular file");
+    table = std::make_unique<CsvTable>(CsvTable::read(path, CsvTable::Values::any_number));
   }
   bool usable() const { return table && table->rows() > 0; }
   bool has(const std::string &column) const { return usable() && table->has(column); }
@@ -342,9 +352,46 @@ void mms_figures(const std::string &dir, const nlohmann::json &summary, std::vec
 }
 } // namespace
 
-void uniaxial_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)
+/// A finite number of a (possibly foreign) summary, else NaN.
+double summary_number(const nlohmann::json &j, const std::string &key, std::size_t index = 0)
+{
+  if (!j.is_object() || !j.contains(key))
+    return std::nan("");
+  const nlohmann::json &v = j.at(key).is_array() && index < j.at(key).size() ? j.at(key).at(index) : j.at(key);
+  return v.is_number() && std::isfinite(v.get<double>()) ? v.get<double>() : std::nan("");
+}
+
+void uniaxial_run_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
 {
   uniaxial_figures(dir, out);
+  // The stress-strain figure marks what the summary reports from it: the
+  // peak (the largest row) and the initial-modulus fit over its window, the
+  // fitted line itself (slope and intercept), so a reader sees which part
+  // of the curve each number comes from.
+  const auto figure = std::find_if(out.begin(), out.end(), [](const Figure &f) { return f.name == "stress_strain"; });
+  if (figure == out.end())
+    return;
+  const double peak = summary_number(summary, "peak_stress_pa"), at = summary_number(summary, "strain_at_peak");
+  if (std::isfinite(peak) && std::isfinite(at))
+  {
+    Curve c = curve("peak: " + format_number(peak * 1e-6, 4) + " MPa at " + format_number(at * 100, 3) + " %",
+                    {at * 100}, {peak * 1e-6}, CurveStyle::points);
+    c.colour = 7;
+    figure->curves.push_back(std::move(c));
+  }
+  const double modulus = summary_number(summary, "initial_modulus_pa");
+  const double intercept = summary_number(summary, "initial_modulus_intercept_pa");
+  const double from = summary_number(summary, "fit_window_axial_strain", 0);
+  const double to = summary_number(summary, "fit_window_axial_strain", 1);
+  if (std::isfinite(modulus) && std::isfinite(intercept) && std::isfinite(from) && std::isfinite(to) && to > from)
+  {
+    Curve c = curve("initial modulus " + format_number(modulus * 1e-9, 4) + " GPa, fitted over " +
+                      format_number(from * 100, 3) + "-" + format_number(to * 100, 3) + " %",
+                    {from * 100, to * 100}, {(modulus * from + intercept) * 1e-6, (modulus * to + intercept) * 1e-6},
+                    CurveStyle::dashed);
+    c.colour = 8;
+    figure->curves.push_back(std::move(c));
+  }
 }
 
 void scene_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)
@@ -393,6 +440,23 @@ std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kin
     const DeckKind *kind = find_deck_kind(kinds, summary.at("kind").get<std::string>());
     if (kind && kind->figures)
       kind->figures(run_dir, summary, out);
+    // Each figure names its run: the deck's title, else the run directory
+    // (quoted safely into the script by gnuplot.cpp; kept short).
+    const nlohmann::json title = summary.value("title", nlohmann::json());
+    std::string run_name = title.is_string() ? title.get<std::string>() : "";
+    if (run_name.empty())
+      run_name = std::filesystem::path(run_dir).lexically_normal().filename().string();
+    if (run_name.empty() || run_name == ".")
+      run_name = std::filesystem::absolute(run_dir).lexically_normal().parent_path().filename().string();
+    if (run_name.size() > 60)
+    {
+      std::size_t cut = 57; // not inside a UTF-8 sequence
+      while (cut > 0 && (static_cast<unsigned char>(run_name[cut]) & 0xC0) == 0x80)
+        --cut;
+      run_name = run_name.substr(0, cut) + "...";
+    }
+    for (Figure &f : out)
+      f.title += " (" + run_name + ")";
     return out;
   }
   catch (const nlohmann::json::exception &e)
