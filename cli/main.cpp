@@ -28,6 +28,7 @@
 #include "cli/commands.h"
 
 #include <CLI/CLI.hpp>
+#include <omp.h>
 
 #include <csignal>
 #include <iostream>
@@ -53,6 +54,10 @@ int main(int argc, char **argv)
   // error path (exit 4, rows before it whole, summary marked) handles it.
   std::signal(SIGXFSZ, SIG_IGN);
   std::signal(SIGPIPE, SIG_IGN);
+  // OMP_NUM_THREADS above the cores is clamped as --threads is (results do
+  // not depend on the count; 100 000 threads crashed the runtime).
+  if (omp_get_max_threads() > omp_get_num_procs())
+    omp_set_num_threads(omp_get_num_procs());
 
   CLI::App app{"demvv: DEM verification workbench (SI units, compression positive)"};
   app.require_subcommand(1);

@@ -152,13 +152,37 @@ std::string json_text(const nlohmann::json &doc, int indent)
   return doc.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+namespace
+{
+/// A series file opened for writing without following a link (a run
+/// directory may be shared: a link planted in it must not lead elsewhere).
+std::FILE *open_series(const std::string &path, int flags)
+{
+  const int fd = ::open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC | flags, 0644);
+  if (fd < 0)
+    output_failed(path, "cannot write", errno);
+  std::FILE *f = ::fdopen(fd, "ab");
+  if (!f)
+  {
+    const int error = errno;
+    ::close(fd);
+    output_failed(path, "cannot write", error);
+  }
+  return f;
+}
+} // namespace
+
 CsvSeries::CsvSeries(const std::string &path, const std::string &comment, const std::vector<std::string> &columns)
   : columns_(columns.size()), path_(path)
 {
-  file_ = std::fopen(path.c_str(), "wb");
-  if (!file_)
-    output_failed(path, "cannot write", errno);
-  std::string head = "# " + comment + "\n";
+  file_ = open_series(path, O_CREAT | O_TRUNC);
+  // The comment is one line whatever it quotes (a deck's file name may hold
+  // a newline): control characters become spaces.
+  std::string line = comment;
+  for (char &c : line)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = ' ';
+  std::string head = "# " + line + "\n";
   for (std::size_t k = 0; k < columns.size(); ++k)
     head += (k ? "," : "") + columns[k];
   head += "\n";
@@ -180,19 +204,39 @@ void sync_file(const std::string &path)
 
 CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_t keep) : columns_(columns), path_(path)
 {
+  const std::string expected = "expected the run's own file (or the run from its start, --replace)";
   std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::symlink_status(path, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    throw std::runtime_error(path + ": a link or a special file, not the series the run wrote: " + expected);
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size < keep)
     throw std::runtime_error(path + ": " + (ec ? "missing" : std::to_string(size) + " bytes") + ", shorter than the " +
                              std::to_string(keep) +
-                             " bytes its checkpoint recorded: the file was cut or replaced since the run paused: "
-                             "expected the run's own file (or the run from its start, --replace)");
+                             " bytes its checkpoint recorded: the file was cut or replaced since the run paused: " +
+                             expected);
+  // The kept part must be whole rows after the two header lines: the
+  // checkpoint's size ends a line, and the header ends before it.
+  std::ifstream in(path, std::ios::binary);
+  std::string kept(static_cast<std::size_t>(std::min<std::uintmax_t>(keep, 1 << 20)), '\0');
+  in.read(kept.data(), static_cast<std::streamsize>(kept.size()));
+  const std::size_t first = kept.find('\n');
+  const std::size_t header_end = first == std::string::npos ? std::string::npos : kept.find('\n', first + 1);
+  char last = '\0';
+  if (keep > 0)
+  {
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(keep - 1));
+    in.get(last);
+  }
+  if (header_end == std::string::npos || last != '\n')
+    throw std::runtime_error(path + ": the checkpoint's size " + std::to_string(keep) +
+                             " does not end a row after the header: the checkpoint or the file was edited: " +
+                             expected);
   std::filesystem::resize_file(path, keep, ec);
   if (ec)
     throw std::runtime_error(path + ": cannot continue the file of the checkpoint: " + ec.message());
-  file_ = std::fopen(path.c_str(), "ab");
-  if (!file_)
-    output_failed(path, "cannot write", errno);
+  file_ = open_series(path, O_APPEND);
 }
 
 CsvSeries::~CsvSeries()

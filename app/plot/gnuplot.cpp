@@ -3,12 +3,14 @@
 
 #include "app/io/output.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <sys/stat.h>
@@ -142,12 +144,33 @@ std::string last_line(const std::string &text)
   return last;
 }
 
-/// Runs `gnuplot NAME.gp` inside `dir`; the empty string on success, else why not.
+/// Whether an SVG file is whole: gnuplot ends it with its closing tag, and
+/// one cut by a full disk or a file-size limit (gnuplot says nothing and
+/// exits 0) lacks it.
+bool whole_svg(const std::string &path)
+{
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : 0;
+  if (size <= 0)
+    return false;
+  const std::streamoff tail = std::min<std::streamoff>(size, 64);
+  std::string end(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(end.data(), tail);
+  return end.find("</svg>") != std::string::npos;
+}
+
+/// Runs `gnuplot NAME.gp` inside `dir`; the empty string on success, else
+/// why not.  The figure drawn before is kept until the new one is whole; a
+/// picture cut short (a full disk, a file-size limit) is an OutputError,
+/// the picture before it restored.
 std::string run_gnuplot(const std::string &dir, const std::string &name)
 {
   const std::string svg = dir + "/" + name + ".svg", log = dir + "/" + name + ".log";
+  const std::string previous = svg + ".previous";
   const std::string script = name + ".gp", log_name = name + ".log";
-  std::remove(svg.c_str());
+  std::remove(previous.c_str());
+  const bool kept = std::rename(svg.c_str(), previous.c_str()) == 0;
   std::remove(log.c_str()); // a link named so is removed, never followed (the child creates it exclusively)
   // Only async-signal-safe calls between fork and exec: the strings are made before.
   const pid_t pid = fork();
@@ -175,12 +198,19 @@ std::string run_gnuplot(const std::string &dir, const std::string &name)
   };
   const std::string messages = stat(log.c_str(), &st) == 0 ? read_file(log) : std::string();
   const bool written = stat(svg.c_str(), &st) == 0 && st.st_size > 0;
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && written)
+  const bool finished = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (finished && written && whole_svg(svg))
   {
     std::remove(log.c_str());
+    std::remove(previous.c_str());
     return {};
   }
   std::remove(svg.c_str());
+  if (kept)
+    std::rename(previous.c_str(), svg.c_str());
+  if (finished && written)
+    throw OutputError(svg + ": cannot write: the picture was cut short (the disk is full, or a file-size limit)" +
+                      std::string(kept ? "; the picture drawn before is kept" : ""));
   const std::string why = last_line(messages);
   return "gnuplot could not draw it" + (why.empty() ? std::string() : ": " + why) + " (messages in " + log + ")";
 }

@@ -122,10 +122,23 @@ std::string deck_hash(const Deck &deck) { return fnv1a_hex(deck.resolved()); }
 void check_reachable(const dem::Simulation &sim, const DemProtocol &protocol)
 {
   const double steps = dem::least_steps(sim.particles(), sim.settings(), protocol.time_left(sim));
-  if (!(steps > max_run_steps))
-    return;
   // A generous speed for the estimate: 1e7 particle-steps per second.
-  const double years = std::max(1.0, double(sim.particles().size())) * steps / 1e7 / 3.15576e7;
+  const double seconds = std::max(1.0, double(sim.particles().size())) * steps / 1e7;
+  if (!(steps > max_run_steps))
+  {
+    // A run that can end but not soon starts with a word on what it asks.
+    if (seconds > 86400)
+    {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "demvv: note: this run needs at least %.3g steps, about %.3g days at 1e7 particle-steps/s "
+                    "(a stiffness, a duration or a rate far from the usual sets its step)\n",
+                    steps, seconds / 86400);
+      std::cerr << text;
+    }
+    return;
+  }
+  const double years = seconds / 3.15576e7;
   char text[200];
   std::snprintf(text, sizeof text,
                 "the run would need at least %.3g steps (about %.3g years at 1e7 particle-steps/s): expected a run "

@@ -177,4 +177,59 @@ sed -i '$ s/^\(.\)/9\1/' "$work/own/balls.csv"
 run "$work/own/deck.prm" --resume "$work/changed" 2>"$work/err"
 [ $? -eq 2 ] && grep -q "balls.csv changed since the run began" "$work/err" || fail "a resume on a changed input: $(cat "$work/err")"
 grep -q '"paused"' "$work/changed/summary.json" || fail "a refused resume lost the paused state"
+
+# 8. A resumed series is the run's own regular file and the checkpoint's
+# size ends a row after its header: a series replaced by a link to a file
+# outside the run is refused and that file untouched; a checkpoint whose
+# recorded size was edited to cut into the header is refused, the series
+# left whole.
+run "$work/own/deck.prm" --out "$work/linked_series" --pause-after 500 2>/dev/null || fail "the third paused run failed"
+# (larger than the series, so that only the link, not the size, refuses it)
+python3 -c 'print("outside\n" * 50000, end="")' > "$work/outside_file"
+cp "$work/outside_file" "$work/outside_before"
+rm "$work/linked_series/series.csv"
+ln -s "$work/outside_file" "$work/linked_series/series.csv"
+run "$work/own/deck.prm" --resume "$work/linked_series" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "a link or a special file" "$work/err" || fail "a resume through a linked series: $(cat "$work/err")"
+cmp -s "$work/outside_file" "$work/outside_before" || fail "a resume wrote through a link to a file outside the run"
+run "$work/own/deck.prm" --out "$work/edited" --pause-after 500 2>/dev/null || fail "the fourth paused run failed"
+cp "$work/edited/series.csv" "$work/series_before"
+python3 - "$work/edited/checkpoint/driver.json" <<'EOF'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["series"][0]["bytes"] = 9
+json.dump(d, open(sys.argv[1], "w"))
+EOF
+run "$work/own/deck.prm" --resume "$work/edited" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "does not end a row after the header" "$work/err" || fail "a checkpoint cutting the header: $(cat "$work/err")"
+cmp -s "$work/edited/series.csv" "$work/series_before" || fail "a refused resume changed the series"
+
+# 9. Names that would break a line: a deck whose file name holds a newline
+# runs, its series' comment stays one line and its figures are drawn; a
+# run directory whose series is a link is not plotted (exit 2, nothing of
+# the linked file printed).
+nl_deck="$work/own/$(printf 'nl\nset output x')deck.prm"
+cp "$work/own/deck.prm" "$nl_deck"
+run "$nl_deck" --out "$work/newline_name" 2>"$work/err" || fail "a deck named with a newline: $(cat "$work/err")"
+[ "$(grep -c '^#' "$work/newline_name/series.csv")" -eq 1 ] || fail "the series' comment is not one line"
+"$demvv" plot "$work/newline_name" 2>"$work/err" || fail "the figures of a deck named with a newline: $(cat "$work/err")"
+rm "$work/newline_name/series.csv"
+printf 'secret line one\nsecret line two\n' > "$work/secret"
+ln -s "$work/secret" "$work/newline_name/series.csv"
+"$demvv" plot "$work/newline_name" 2>"$work/err"
+[ $? -eq 2 ] && ! grep -q secret "$work/err" || fail "plot followed a linked series: $(cat "$work/err")"
+
+# 10. OMP_NUM_THREADS far above the cores is clamped (it crashed the runtime).
+OMP_NUM_THREADS=100000 "$demvv" run "$impact" --out "$work/many_threads" --quiet 2>"$work/err" ||
+  fail "OMP_NUM_THREADS=100000: $(cat "$work/err")"
+
+# 11. A figure cut short by a file-size limit (gnuplot exits 0 on it) is an
+# output failure, exit 4, and the picture drawn before is kept whole.
+ls "$work/many_threads/plots/"*.svg >/dev/null 2>&1 || fail "the run drew no figures to redraw"
+cp -r "$work/many_threads/plots" "$work/plots_before"
+(ulimit -f 8; "$demvv" plot "$work/many_threads" 2>"$work/err")
+[ $? -eq 4 ] && grep -q "cut short" "$work/err" || fail "a figure cut by a file-size limit: $(cat "$work/err")"
+for f in "$work/plots_before/"*.svg; do
+  cmp -s "$f" "$work/many_threads/plots/$(basename "$f")" || fail "$(basename "$f") was not kept whole"
+done
 echo "run directory security: ok"
