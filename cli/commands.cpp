@@ -193,6 +193,9 @@ int command_defaults(const std::string &kind)
 int command_verify(bool full, const std::string &only, const std::string &out_dir, const std::string &cases_dir,
                    int threads)
 {
+  if (!cases_dir.empty() && !std::filesystem::is_directory(cases_dir))
+    throw DeckError("--cases '" + cases_dir + "': not a directory: expected the folder of the case decks (default: " +
+                    default_cases_dir() + ")");
   const int used = apply_threads({"", threads, false});
   CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads};
   const std::vector<CheckRecord> records = run_checks(ctx, only, true);

@@ -21,16 +21,26 @@ const DeckKinds &deck_kinds()
       {"burgers_ode",
        "one Burger's chain (contact or material point) under a prescribed history, SUNDIALS CVODE "
        "beside its closed form",
-       &declare_burgers_ode, [](const Deck &d) { return parsed_run(parse_burgers_ode(d), &run_burgers_ode); },
+       &declare_burgers_ode,
+       [](const Deck &d) {
+         return parsed_run(parse_burgers_ode(d),
+                           [](const auto &s, const RunOptions &o) { return run_burgers_ode(s, o); });
+       },
        &burgers_ode_run_figures},
       {"cylinder", "viscoelastic continuum cylinder (deal.II) compressed between frictionless or bonded platens",
-       &declare_cylinder, [](const Deck &d) { return parsed_run(parse_cylinder(d), &run_cylinder); },
+       &declare_cylinder,
+       [](const Deck &d)
+       { return parsed_run(parse_cylinder(d), [](const auto &s, const RunOptions &o) { return run_cylinder(s, o); }); },
        &cylinder_run_figures, true},
       {"compare", "DEM bulk beside the continuum cylinder built from the same contacts, same sample and history",
-       &declare_compare, [](const Deck &d) { return parsed_run(parse_compare(d), &run_compare); },
+       &declare_compare,
+       [](const Deck &d)
+       { return parsed_run(parse_compare(d), [](const auto &s, const RunOptions &o) { return run_compare(s, o); }); },
        &compare_run_figures},
       {"mms", "manufactured-solution convergence study of the continuum cylinder in space or time", &declare_mms,
-       [](const Deck &d) { return parsed_run(parse_mms(d), &run_mms_deck); }, &mms_run_figures, true},
+       [](const Deck &d)
+       { return parsed_run(parse_mms(d), [](const auto &s, const RunOptions &o) { return run_mms_deck(s, o); }); },
+       &mms_run_figures, true},
     };
     all.insert(all.end(), continuum.begin(), continuum.end());
     return all;

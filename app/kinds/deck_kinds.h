@@ -16,9 +16,10 @@
 namespace demvv
 {
 /// A kind's run on its parsed spec (DeckKind::parse): the spec is kept,
-/// shared, in the closure through which the run is called.
-template <class Spec, class Result>
-ParsedRun parsed_run(Spec spec, Result (*run)(const Spec &, const RunOptions &))
+/// shared, in the closure through which `run(spec, options)` is called
+/// (a callable, as each run_<kind> is overloaded on a spec and a deck).
+template <class Spec, class Run>
+ParsedRun parsed_run(Spec spec, Run run)
 {
   auto kept = std::make_shared<const Spec>(std::move(spec));
   return [kept, run](const RunOptions &options) { return run(*kept, options).status; };

@@ -13,12 +13,19 @@ const DeckKinds &dem_deck_kinds()
 {
   static const DeckKinds kinds = {
     {"scene", "explicit particles, walls, bonds and prescribed motions (two-ball tests, chains, boxes)", &declare_scene,
-     [](const Deck &d) { return parsed_run(parse_scene(d), &run_scene); }, &scene_run_figures, false, true},
+     [](const Deck &d)
+     { return parsed_run(parse_scene(d), [](const auto &s, const RunOptions &o) { return run_scene(s, o); }); },
+     &scene_run_figures, false, true},
     {"prepare", "numerical sample preparation (thesis ch. 5): a dense random bonded packing saved to a sample file",
-     &declare_prepare, [](const Deck &d) { return parsed_run(parse_prepare_spec(d), &run_prepare); },
+     &declare_prepare,
+     [](const Deck &d) {
+       return parsed_run(parse_prepare_spec(d), [](const auto &s, const RunOptions &o) { return run_prepare(s, o); });
+     },
      &prepare_run_figures},
     {"uniaxial", "compression of a bonded cylinder between platens: constant rate, creep, relaxation or cyclic",
-     &declare_uniaxial, [](const Deck &d) { return parsed_run(parse_uniaxial(d), &run_uniaxial); },
+     &declare_uniaxial,
+     [](const Deck &d)
+     { return parsed_run(parse_uniaxial(d), [](const auto &s, const RunOptions &o) { return run_uniaxial(s, o); }); },
      &uniaxial_run_figures, false, true},
   };
   return kinds;

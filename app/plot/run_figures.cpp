@@ -438,7 +438,16 @@ std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kin
       parse_json_input(read_input(path, "run summary", max_summary_bytes), path, "run summary");
     std::vector<Figure> out;
     const DeckKind *kind = find_deck_kind(kinds, summary.at("kind").get<std::string>());
-    if (kind && kind->figures)
+    if (!kind)
+    {
+      std::string shown = summary.at("kind").get<std::string>().substr(0, 40);
+      for (char &c : shown)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+          c = '?';
+      throw DeckError(path + ": kind '" + shown +
+                      "' is no deck kind of this demvv: expected the summary of a run it made");
+    }
+    if (kind->figures)
       kind->figures(run_dir, summary, out);
     // Each figure names its run: the deck's title, else the run directory
     // (quoted safely into the script by gnuplot.cpp; kept short).

@@ -126,14 +126,15 @@ void check_reachable(const dem::Simulation &sim, const DemProtocol &protocol)
   const double seconds = std::max(1.0, double(sim.particles().size())) * steps / 1e7;
   if (!(steps > max_run_steps))
   {
-    // A run that can end but not soon starts with a word on what it asks.
-    if (seconds > 86400)
+    // A run that can end but not soon (an hour even at a speed above the
+    // engine's) starts with a word on what it asks.
+    if (seconds > 3600)
     {
       char text[200];
       std::snprintf(text, sizeof text,
-                    "demvv: note: this run needs at least %.3g steps, about %.3g days at 1e7 particle-steps/s "
+                    "demvv: note: this run needs at least %.3g steps, about %.3g hours at 1e7 particle-steps/s "
                     "(a stiffness, a duration or a rate far from the usual sets its step)\n",
-                    steps, seconds / 86400);
+                    steps, seconds / 3600);
       std::cerr << text;
     }
     return;

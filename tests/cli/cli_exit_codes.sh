@@ -29,12 +29,12 @@ python3 -c "import json, os, sys; t = json.load(open(sys.argv[1]))['status']['th
 sys.exit(0 if max(t.get('most', 0), t['at_end']) <= os.cpu_count() else 1)" "$out/threads/summary.json" ||
   fail "--threads 1024 must use at most the machine's cores"
 
-# A run that can end, but only in days, says so before its first step (a
+# A run that can end, but only in hours or days, says so before its first step (a
 # pause after ten steps ends this one at once).
 "$demvv" run "$data/bad/uniaxial_lattice.prm" --set "loading/platen speed=1e-11" --out "$out/long" --pause-after 10 \
   --quiet 2> "$out/err" ||
   fail "a long run paused after ten steps: $(cat "$out/err")"
-grep -q "note: this run needs at least .* days" "$out/err" || fail "a run of days does not say so: $(cat "$out/err")"
+grep -q "note: this run needs at least .* hours" "$out/err" || fail "a run of days does not say so: $(cat "$out/err")"
 
 "$demvv" verify --only V05 --out "$out/verify" 2> /dev/null || fail "verify V05 must pass"
 [ -s "$out/verify/report.md" ] && [ -s "$out/verify/report.json" ] || fail "verify writes report.md and report.json"

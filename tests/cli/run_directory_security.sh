@@ -232,4 +232,13 @@ cp -r "$work/many_threads/plots" "$work/plots_before"
 for f in "$work/plots_before/"*.svg; do
   cmp -s "$f" "$work/many_threads/plots/$(basename "$f")" || fail "$(basename "$f") was not kept whole"
 done
+
+# 12. A summary of no known kind is refused (it drew "0 figures", exit 0);
+# verify --cases on a folder that does not exist is bad input (exit 2).
+mkdir "$work/foreign_kind"
+printf '{"kind": "../../etc"}\n' > "$work/foreign_kind/summary.json"
+"$demvv" plot "$work/foreign_kind" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "no deck kind" "$work/err" || fail "a summary of an unknown kind: $(cat "$work/err")"
+"$demvv" verify --only V05 --cases "$work/nowhere" --out "$work/verify_nowhere" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "not a directory" "$work/err" || fail "verify --cases on no folder: $(cat "$work/err")"
 echo "run directory security: ok"
