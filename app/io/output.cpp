@@ -178,11 +178,7 @@ CsvSeries::CsvSeries(const std::string &path, const std::string &comment, const 
   file_ = open_series(path, O_CREAT | O_TRUNC);
   // The comment is one line whatever it quotes (a deck's file name may hold
   // a newline): control characters become spaces.
-  std::string line = comment;
-  for (char &c : line)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      c = ' ';
-  std::string head = "# " + line + "\n";
+  std::string head = "# " + one_line(comment) + "\n";
   for (std::size_t k = 0; k < columns.size(); ++k)
     head += (k ? "," : "") + columns[k];
   head += "\n";
@@ -211,10 +207,9 @@ CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_
     throw std::runtime_error(path + ": a link or a special file, not the series the run wrote: " + expected);
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size < keep)
-    throw std::runtime_error(path + ": " + (ec ? "missing" : std::to_string(size) + " bytes") + ", shorter than the " +
-                             std::to_string(keep) +
-                             " bytes its checkpoint recorded: the file was cut or replaced since the run paused: " +
-                             expected);
+    throw std::runtime_error(
+      path + ": " + (ec ? "missing" : std::to_string(size) + " bytes") + ", shorter than the " + std::to_string(keep) +
+      " bytes its checkpoint recorded: the file was cut or replaced since the run paused: " + expected);
   // The kept part must be whole rows after the two header lines: the
   // checkpoint's size ends a line, and the header ends before it.
   std::ifstream in(path, std::ios::binary);
@@ -230,9 +225,9 @@ CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_
     in.get(last);
   }
   if (header_end == std::string::npos || last != '\n')
-    throw std::runtime_error(path + ": the checkpoint's size " + std::to_string(keep) +
-                             " does not end a row after the header: the checkpoint or the file was edited: " +
-                             expected);
+    throw std::runtime_error(
+      path + ": the checkpoint's size " + std::to_string(keep) +
+      " does not end a row after the header: the checkpoint or the file was edited: " + expected);
   std::filesystem::resize_file(path, keep, ec);
   if (ec)
     throw std::runtime_error(path + ": cannot continue the file of the checkpoint: " + ec.message());

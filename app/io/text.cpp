@@ -16,6 +16,15 @@ std::string format_number(double v, int significant)
   return text;
 }
 
+std::string one_line(std::string_view s, char replacement)
+{
+  std::string out(s);
+  for (char &c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = replacement;
+  return out;
+}
+
 std::string trimmed(std::string_view s)
 {
   const auto b = s.find_first_not_of(" \t\r\n");

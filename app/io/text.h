@@ -33,6 +33,10 @@ std::string format_number(double v, int significant = 12);
 /// `s` without blanks, tabs and line ends at either end.
 std::string trimmed(std::string_view s);
 
+/// `s` on one line, for text from elsewhere written into a line of a file or
+/// a message: control characters (below 0x20, and DEL) become `replacement`.
+std::string one_line(std::string_view s, char replacement = ' ');
+
 /// The one-line error for a key of a deck or an input file: "FILE: key
 /// 'KEY' has value 'VALUE': EXPECTED" ("deck" when there is no file).
 [[noreturn]] void fail_key(const std::string &file, const std::string &key, const std::string &value,

@@ -58,21 +58,10 @@ Figure make_figure(std::string name, std::string title, std::string x_label, std
 
 namespace
 {
-/// Text from a run directory (a title, a column, a file name) made safe
-/// for one line of a script: control characters (a newline would start a
-/// command of its own) become spaces.
-std::string one_line(const std::string &s)
-{
-  std::string out = s;
-  for (char &c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      c = ' ';
-  return out;
-}
-
 /// A gnuplot single-quoted string ('' stands for one quote inside): inside
 /// single quotes gnuplot substitutes neither `backquoted` commands nor
-/// @macros, and control characters are gone (one_line).
+/// @macros, and control characters are gone (one_line: a newline would
+/// start a command of its own).
 std::string quoted(const std::string &s)
 {
   std::string out = "'";

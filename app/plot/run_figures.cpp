@@ -4,6 +4,7 @@
 #include "app/decks/deck.h"
 #include "app/io/input.h"
 #include "app/io/output.h"
+#include "app/io/text.h"
 #include "app/plot/studies.h"
 
 #include <nlohmann/json.hpp>
@@ -440,10 +441,7 @@ std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kin
     const DeckKind *kind = find_deck_kind(kinds, summary.at("kind").get<std::string>());
     if (!kind)
     {
-      std::string shown = summary.at("kind").get<std::string>().substr(0, 40);
-      for (char &c : shown)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-          c = '?';
+      const std::string shown = one_line(summary.at("kind").get<std::string>().substr(0, 40), '?');
       throw DeckError(path + ": kind '" + shown +
                       "' is no deck kind of this demvv: expected the summary of a run it made");
     }
