@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include "app/decks/deck.h"
+#include "app/io/input.h"
 #include "app/io/output.h"
 #include "app/kinds/deck_kinds.h"
 #include "app/plot/run_figures.h"
@@ -170,9 +171,12 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
   tell(deck, o, status);
   if (stopped_while_drawing)
   {
+    // The results are complete only if the run itself was not stopped
+    // (a second signal may come while the figures of a stopped run are drawn).
     std::cerr << "demvv: " << signal_name(stopped_while_drawing) << " while drawing the figures: the run's results in "
-              << o.out_dir << " are complete, some figures may be missing; draw them with: demvv plot " << o.out_dir
-              << "\n";
+              << o.out_dir
+              << (status.exit_code() == 0 ? " are complete" : " are as the line above says")
+              << ", some figures may be missing; draw them with: demvv plot " << o.out_dir << "\n";
     return 128 + stopped_while_drawing;
   }
   return status.exit_code();
@@ -180,7 +184,27 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
 
 int command_plot(const std::string &run_dir)
 {
+  const StopSignals signals;
   draw_run_figures(run_dir, true);
+  if (const int stopped = signals.received())
+  {
+    mark_figures_interrupted(run_dir, stopped);
+    return 128 + stopped;
+  }
+  // Drawn whole: a summary that said a drawing was interrupted says so no more.
+  const std::string path = run_dir + "/summary.json";
+  try
+  {
+    const nlohmann::json summary =
+      parse_json_input(read_input(path, "run summary", max_summary_bytes), path, "run summary");
+    if (summary.contains("figures") && summary.at("figures").contains("interrupted_by"))
+      amend_summary(run_dir, "figures", {{"drawn_by", "demvv plot " + run_dir}},
+                    "could not say that its figures are drawn");
+  }
+  catch (const std::exception &)
+  {
+    // The figures were drawn; a summary that cannot be read again keeps what it said.
+  }
   return 0;
 }
 

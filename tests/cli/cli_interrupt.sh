@@ -132,6 +132,13 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 sys.exit(0 if s["status"]["state"] == "completed" and s["figures"]["interrupted_by"] == "SIGTERM" else 1)
 EOF
+# Drawn again whole by the command the message gives, the summary no longer
+# says the drawing was interrupted.
+"$demvv" plot "$dir" 2>"$work/err_replot" || fail "the figures could not be drawn again: $(cat "$work/err_replot")"
+python3 - "$dir/summary.json" <<'EOF' || fail "the summary still says the figures were interrupted"
+import json, sys
+sys.exit(0 if "interrupted_by" not in json.load(open(sys.argv[1])).get("figures", {}) else 1)
+EOF
 passed=$((passed + 1))
 # A signal while a sample is prepared (a preparation has no checkpoint): a
 # prepare run exits 143 with summary.json saying "interrupted" and that it
