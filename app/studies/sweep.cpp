@@ -82,9 +82,21 @@ Varied parse_vary(const std::string &arg, const Deck &base)
   Varied v{key, {}};
   for (const std::string &value : split(arg.substr(eq + 1), ','))
   {
-    if (trimmed(value).empty())
+    const std::string t = trimmed(value);
+    if (t.empty())
       throw DeckError("--vary '" + arg + "': an empty value: expected comma-separated values, none empty");
-    v.values.push_back(trimmed(value));
+    // A value given twice (as text, or as the same number: 0.1 and 1e-1)
+    // would run the same member twice.
+    const auto same = [&t](const std::string &other)
+    {
+      char *end_a = nullptr, *end_b = nullptr;
+      const double a = std::strtod(t.c_str(), &end_a), b = std::strtod(other.c_str(), &end_b);
+      return other == t || (*end_a == '\0' && *end_b == '\0' && a == b);
+    };
+    if (std::any_of(v.values.begin(), v.values.end(), same))
+      throw DeckError("--vary '" + arg + "': the value '" + t +
+                      "' is given twice: expected distinct values (a repeated value runs the same member twice)");
+    v.values.push_back(t);
   }
   if (v.values.empty())
     throw DeckError("--vary '" + arg + "': no values: expected comma-separated values after '='");
