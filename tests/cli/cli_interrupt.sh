@@ -145,9 +145,10 @@ passed=$((passed + 1))
 # must run again; a test whose sample deck is being prepared for it (an
 # empty cache) exits 143 too, saying what was stopped, with no summary that
 # says "running" (it stopped before its first step, so it wrote none), the
-# cache's preparation saying "interrupted" and no sample in the cache.  A preparation takes tens of seconds (1000
-# balls) or minutes (6000); the signal goes a second after it has begun (its
-# run directory's summary.json exists).
+# cache's preparation saying "interrupted" and no sample in the cache.  The
+# preparations take tens of seconds (4000 balls) and a minute or more (6000)
+# on two cores; the signal goes a second after one has begun (its run
+# directory's summary.json exists).
 signal_during_preparation() { # NAME, FOLDER of the preparation, then demvv's arguments
   name=$1
   folder=$2
@@ -166,7 +167,7 @@ signal_during_preparation() { # NAME, FOLDER of the preparation, then demvv's ar
   code=$?
   [ $code -eq 143 ] || fail "$name: exit code $code, expected 143 ($(cat "$work/err_$name"))"
 }
-signal_during_preparation prepare "$work/prepare_run" run "$cases/p03_sample_1000/case.prm" --out "$work/prepare_run" --threads 1
+signal_during_preparation prepare "$work/prepare_run" run "$cases/p05_sample_4000/case.prm" --out "$work/prepare_run" --threads 1
 python3 - "$work/prepare_run/summary.json" <<'EOF' || fail "the prepare run's summary does not say it was interrupted"
 import json, sys
 s = json.load(open(sys.argv[1]))["status"]
