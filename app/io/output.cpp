@@ -213,10 +213,14 @@ CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_
   // The kept part must be whole rows after the two header lines: the
   // checkpoint's size ends a line, and the header ends before it.
   std::ifstream in(path, std::ios::binary);
-  std::string kept(static_cast<std::size_t>(std::min<std::uintmax_t>(keep, 1 << 20)), '\0');
-  in.read(kept.data(), static_cast<std::streamsize>(kept.size()));
-  const std::size_t first = kept.find('\n');
-  const std::size_t header_end = first == std::string::npos ? std::string::npos : kept.find('\n', first + 1);
+  std::string line;
+  std::uintmax_t header = 0;
+  int header_lines = 0;
+  while (header_lines < 2 && std::getline(in, line) && !in.eof())
+  {
+    header += line.size() + 1;
+    ++header_lines;
+  }
   char last = '\0';
   if (keep > 0)
   {
@@ -224,7 +228,7 @@ CsvSeries::CsvSeries(const std::string &path, std::size_t columns, std::uintmax_
     in.seekg(static_cast<std::streamoff>(keep - 1));
     in.get(last);
   }
-  if (header_end == std::string::npos || last != '\n')
+  if (header_lines < 2 || header > keep || last != '\n')
     throw std::runtime_error(
       path + ": the checkpoint's size " + std::to_string(keep) +
       " does not end a row after the header: the checkpoint or the file was edited: " + expected);
