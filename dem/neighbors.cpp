@@ -28,16 +28,23 @@ void NeighborList::release_candidates()
     std::vector<Index>().swap(*scratch);
 }
 
-void NeighborList::rebuild(const ParticleStore &particles)
+namespace
+{
+/// Scratch of a cell build, kept by a NeighborList between builds.
+struct CellScratch
+{
+  std::vector<Index> &cell_start, &cell_members, &cell_of, &cell_fill;
+};
+
+/// Calls visit(i, j) for every pair i < j of balls in neighbouring cells
+/// (cells at least R_i + R_j + skin wide), i ascending and, for each i, the
+/// candidates j in cell order; stops as soon as visit returns false.
+template <class Visit>
+void visit_cell_neighbours(const ParticleStore &particles, double skin, const CellScratch &s, Visit &&visit)
 {
   const Index n = particles.size();
-  reference_ = particles.position;
-  quarter_skin_sq_ = 0.25 * skin_ * skin_;
-  pairs_.clear();
-  ++rebuilds_;
   if (n == 0)
     return;
-
   Vec3 lo = particles.position[0], hi = lo;
   for (const Vec3 &x : particles.position)
   {
@@ -50,7 +57,7 @@ void NeighborList::rebuild(const ParticleStore &particles)
   // once they are known to fit: balls at huge coordinates (1e300 m) coarsen
   // the grid, and a box no double can measure (balls at -1e308 and 1e308,
   // or a NaN position) gets a single cell.
-  double h = std::max(2.0 * particles.max_radius() + skin_, std::numeric_limits<double>::min());
+  double h = std::max(2.0 * particles.max_radius() + skin, std::numeric_limits<double>::min());
   const Vec3 extent = (hi - lo).cwiseMax(h);
   const double max_cells = 8.0 * double(n) + 64;
   const auto along = [&](int k) { return std::max(1.0, std::floor(extent[k] / h)); };
@@ -71,43 +78,87 @@ void NeighborList::rebuild(const ParticleStore &particles)
   const auto cell_id = [&](long cx, long cy, long cz) { return (cz * dims[1] + cy) * dims[0] + cx; };
 
   // Counting sort of balls into cells.
-  cell_of_.resize(n);
-  cell_start_.assign(cells + 1, 0);
+  s.cell_of.resize(n);
+  s.cell_start.assign(cells + 1, 0);
   for (Index p = 0; p < n; ++p)
   {
     const Vec3 &x = particles.position[p];
-    cell_of_[p] = static_cast<Index>(cell_id(coord(x, 0), coord(x, 1), coord(x, 2)));
-    ++cell_start_[cell_of_[p] + 1];
+    s.cell_of[p] = static_cast<Index>(cell_id(coord(x, 0), coord(x, 1), coord(x, 2)));
+    ++s.cell_start[s.cell_of[p] + 1];
   }
   for (long c = 0; c < cells; ++c)
-    cell_start_[c + 1] += cell_start_[c];
-  cell_members_.resize(n);
-  cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    s.cell_start[c + 1] += s.cell_start[c];
+  s.cell_members.resize(n);
+  s.cell_fill.assign(s.cell_start.begin(), s.cell_start.end() - 1);
   for (Index p = 0; p < n; ++p)
-    cell_members_[cell_fill_[cell_of_[p]]++] = p;
+    s.cell_members[s.cell_fill[s.cell_of[p]]++] = p;
 
-  std::vector<Index> &partners = partners_;
   for (Index i = 0; i < n; ++i)
   {
     const Vec3 &x = particles.position[i];
     const long cx = coord(x, 0), cy = coord(x, 1), cz = coord(x, 2);
-    partners.clear();
     for (long z = std::max(0L, cz - 1); z <= std::min(dims[2] - 1, cz + 1); ++z)
       for (long y = std::max(0L, cy - 1); y <= std::min(dims[1] - 1, cy + 1); ++y)
         for (long xx = std::max(0L, cx - 1); xx <= std::min(dims[0] - 1, cx + 1); ++xx)
         {
           const long c = cell_id(xx, y, z);
-          for (Index k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+          for (Index k = s.cell_start[c]; k < s.cell_start[c + 1]; ++k)
           {
-            const Index j = cell_members_[k];
-            if (j > i && within(particles, i, j, skin_))
-              partners.push_back(j);
+            const Index j = s.cell_members[k];
+            if (j > i && !visit(i, j))
+              return;
           }
         }
+  }
+}
+} // namespace
+
+void NeighborList::rebuild(const ParticleStore &particles)
+{
+  reference_ = particles.position;
+  quarter_skin_sq_ = 0.25 * skin_ * skin_;
+  pairs_.clear();
+  ++rebuilds_;
+  // Each ball's partners are gathered, then sorted, before the next ball's.
+  std::vector<Index> &partners = partners_;
+  partners.clear();
+  Index current = 0;
+  const auto flush = [&]()
+  {
     std::sort(partners.begin(), partners.end());
     for (Index j : partners)
-      pairs_.emplace_back(i, j);
-  }
+      pairs_.emplace_back(current, j);
+    partners.clear();
+  };
+  visit_cell_neighbours(particles, skin_, {cell_start_, cell_members_, cell_of_, cell_fill_},
+                        [&](Index i, Index j)
+                        {
+                          if (i != current)
+                          {
+                            flush();
+                            current = i;
+                          }
+                          if (within(particles, i, j, skin_))
+                            partners.push_back(j);
+                          return true;
+                        });
+  flush();
+}
+
+std::optional<Pair> first_deep_overlap(const ParticleStore &particles, double fraction)
+{
+  std::vector<Index> cell_start, cell_members, cell_of, cell_fill;
+  std::optional<Pair> found;
+  visit_cell_neighbours(particles, 0.0, {cell_start, cell_members, cell_of, cell_fill},
+                        [&](Index i, Index j)
+                        {
+                          const double overlap = particles.radius[i] + particles.radius[j] -
+                                                 (particles.position[j] - particles.position[i]).norm();
+                          if (overlap > fraction * std::min(particles.radius[i], particles.radius[j]))
+                            found = Pair(i, j);
+                          return !found;
+                        });
+  return found;
 }
 
 std::vector<Pair> brute_force_pairs(const ParticleStore &particles, double skin)

@@ -12,6 +12,7 @@
 
 #include "dem/particles.h"
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,12 @@ private:
   std::vector<Index> cell_start_, cell_members_, cell_of_, cell_fill_, partners_;
   std::size_t rebuilds_ = 0;
 };
+
+/// The first pair (i, j), i < j, whose overlap R_i + R_j - |x_i - x_j|
+/// exceeds `fraction` of the smaller radius, or none.  It stops at the first
+/// such pair, so balls piled on one point are found in the time of one cell
+/// build (a full candidate list of N coincident balls has N^2/2 pairs).
+std::optional<Pair> first_deep_overlap(const ParticleStore &particles, double fraction);
 
 /// All pairs i < j with |x_i - x_j| < R_i + R_j + skin, sorted.  O(N^2).
 std::vector<Pair> brute_force_pairs(const ParticleStore &particles, double skin);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace dem
 {
@@ -64,6 +65,21 @@ double UniaxialCompression::scheduled_speed(const Simulation &sim)
 
 void UniaxialCompression::drive(Simulation &sim)
 {
+  // Platens closer than one ball radius hold no sample: a load beyond its
+  // strength (a creep stress, a servo) crushed it and drove the balls out
+  // sideways, and the platens would pass each other.  No strain measured
+  // from here on means anything.  (A ball still between them overlaps a
+  // platen by half its radius before that: Simulation::
+  // check_contact_overlaps names it first.)
+  const double gap = separation(sim), radius = sim.particles().max_radius();
+  if (gap < radius)
+  {
+    std::ostringstream what;
+    what << "the sample collapsed: the platens are " << gap << " m apart (axial strain " << axial_strain(sim)
+         << "), less than the largest ball radius " << radius
+         << " m, with the balls pushed out from between them; the load exceeded what the sample can carry";
+    throw NumericalFault(sim.steps(), sim.time(), -1, what.str());
+  }
   double speed = 0;
   if (scheduled())
     speed = scheduled_speed(sim);

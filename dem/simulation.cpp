@@ -415,6 +415,32 @@ void Simulation::check_energy_ledger(const LedgerLimits &limits) const
   }
 }
 
+void Simulation::check_contact_overlaps(double fraction) const
+{
+  const ParticleStore &P = particles_;
+  const auto refuse = [&](Index ball, double overlap, double radius, const std::string &with)
+  {
+    std::ostringstream msg;
+    msg << "contact overlap beyond the law's meaning: the particle overlaps " << with << " by " << overlap
+        << " m, more than " << fraction << " of the radius " << radius
+        << " m (a load the contact stiffness cannot carry, or balls pressed through one another)";
+    fail(ball, msg.str());
+  };
+  for (const Contact &c : contacts_.entries())
+  {
+    const double smaller = std::min(P.radius[c.first], P.radius[c.second]);
+    if (c.state.touching() && c.state.overlap > fraction * smaller)
+      refuse(c.first, c.state.overlap, smaller, "particle " + std::to_string(c.second));
+  }
+  for (WallIndex w = 0; w < walls_.size(); ++w)
+    for (Index p = 0; p < P.size(); ++p)
+    {
+      const ContactState &s = walls_.state(w, p);
+      if (s.touching() && s.overlap > fraction * P.radius[p])
+        refuse(p, s.overlap, P.radius[p], "wall " + std::to_string(w));
+    }
+}
+
 std::pair<double, double> Simulation::wall_energy(WallIndex w) const
 {
   const LinearLaw wall_law;

@@ -248,6 +248,14 @@ public:
   /// the ball most to blame.  Call it after integrate(true).
   void check_energy_ledger(const LedgerLimits &limits) const;
 
+  /// Stops the run (NumericalFault naming the ball) when a contact overlaps
+  /// by more than `fraction` of the smaller radius (of the ball's radius at
+  /// a wall): the linear spring is then far outside its meaning (half a
+  /// radius is also what a sample or particle file may start with at most),
+  /// the mark of a load the stiffness cannot carry or of balls pressed
+  /// through one another.
+  void check_contact_overlaps(double fraction) const;
+
   /// Force exerted by the balls on wall w at the last force time [N].
   Vec3 wall_force(WallIndex w) const;
 

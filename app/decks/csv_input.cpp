@@ -3,6 +3,7 @@
 #include "app/decks/deck.h"
 #include "app/io/input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -46,6 +47,11 @@ CsvTable CsvTable::read(const std::string &path, Values values)
     const auto c = cells(s);
     if (t.header_.empty())
     {
+      for (std::size_t k = 0; k < c.size(); ++k)
+        if (std::find(c.begin(), c.begin() + long(k), c[k]) != c.begin() + long(k))
+          throw DeckError(path + ":" + std::to_string(line) + ": column '" + escaped(c[k]) +
+                          "' is named twice in the header: expected each column once (one of the two would be "
+                          "ignored)");
       t.header_ = c;
       continue;
     }
@@ -57,7 +63,8 @@ CsvTable CsvTable::read(const std::string &path, Values values)
     {
       char *end = nullptr;
       const double v = std::strtod(c[k].c_str(), &end);
-      const bool number = !c[k].empty() && *end == '\0';
+      // The whole cell is the number: a NUL inside it ends the C string early.
+      const bool number = !c[k].empty() && end == c[k].c_str() + c[k].size();
       if (!number || (values == Values::finite && !std::isfinite(v)))
         throw DeckError(path + ":" + std::to_string(line) + ": column '" + t.header_[k] + "' has value '" +
                         escaped(c[k]) + "': expected a " + (number ? "finite number" : "number"));
@@ -69,6 +76,19 @@ CsvTable CsvTable::read(const std::string &path, Values values)
   if (t.header_.empty())
     throw DeckError(path + ": the file is empty: expected a header line and at least one row");
   return t;
+}
+
+void CsvTable::allow_only(const std::vector<std::string> &known, const std::string &what) const
+{
+  for (const std::string &column : header_)
+    if (std::find(known.begin(), known.end(), column) == known.end())
+    {
+      std::string list;
+      for (const std::string &k : known)
+        list += (list.empty() ? "" : ",") + k;
+      throw DeckError(path_ + ": column '" + escaped(column) + "' is not a column of " + what +
+                      ": expected columns among " + list + " (a misspelt column would be ignored)");
+    }
 }
 
 int CsvTable::index(const std::string &column) const

@@ -2,9 +2,10 @@
 //
 // The first non-comment line is the header; every later non-empty line must
 // have one finite number per column (nan and inf are refused: no column of
-// any table a deck names means them).  Lines starting with '#' are comments.
-// Any problem is a DeckError naming the file, the line and the column.  The
-// file must be a regular file of at most max_table_bytes (app/io/input.h).
+// any table a deck names means them); a header names each column once.
+// Lines starting with '#' are comments.  Any problem is a DeckError naming
+// the file, the line and the column.  The file must be a regular file of at
+// most max_table_bytes (app/io/input.h).
 // A run's own outputs, read back to draw its figures, may hold nan where a
 // value is undefined (the order of accuracy of a study's first level).
 #pragma once
@@ -30,6 +31,10 @@ public:
   std::size_t rows() const { return rows_.size(); }
   bool has(const std::string &column) const { return index(column) >= 0; }
   const std::vector<std::string> &header() const { return header_; }
+  /// Refuses (DeckError naming the file and the column) a header column
+  /// not in `known`: a table whose reader would ignore a column (a misspelt
+  /// density_kgpm3) must not run as if the column held nothing.
+  void allow_only(const std::vector<std::string> &known, const std::string &what) const;
   /// Value of a column in row r; `fallback` if the column is absent.
   double get(std::size_t r, const std::string &column, double fallback) const;
   /// Value of a required column (DeckError if the table lacks it).

@@ -414,6 +414,16 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
 {
   std::vector<PrmAssignment> out;
   std::vector<std::string> stack;
+  // Where each section and key was first written: a second one would merge
+  // into the first (two 'subsection plane a') or silently win over it.
+  std::map<std::string, int> opened, written;
+  const auto path_of = [&stack]()
+  {
+    std::string p;
+    for (const auto &sec : stack)
+      p += (p.empty() ? "" : "/") + sec;
+    return p;
+  };
   std::string raw;
   int line = 0;
   while (std::getline(in, raw))
@@ -425,7 +435,13 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
       continue;
     const std::string where = path + ":" + std::to_string(line);
     if (s.rfind("subsection ", 0) == 0)
+    {
       stack.push_back(trimmed(s.substr(11)));
+      if (const auto [first, fresh] = opened.emplace(path_of(), line); !fresh)
+        throw DeckError(where + ": subsection '" + escaped(first->first) + "' is opened again (first at line " +
+                        std::to_string(first->second) +
+                        "): expected each section once (its entries would merge into the first one's)");
+    }
     else if (s == "end")
     {
       if (stack.empty())
@@ -441,6 +457,10 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
       for (const auto &sec : stack)
         key += sec + "/";
       key += trimmed(s.substr(4, eq - 4));
+      // A second 'set kind' has its own message (from_file).
+      if (const auto [first, fresh] = written.emplace(key, line); !fresh && key != "kind")
+        throw DeckError(where + ": key '" + escaped(key) + "' is set again (first at line " +
+                        std::to_string(first->second) + "): expected each key once (the last would win silently)");
       out.push_back({key, trimmed(s.substr(eq + 1)), line});
     }
     else

@@ -204,7 +204,7 @@ void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool te
   if (std::find(modes.begin(), modes.end(), "list") != modes.end())
     s.file("list file", "",
            "CSV of bonded pairs for install = list: columns first,second (ball indices from 0) and "
-           "optionally normal_strength_n, shear_strength_n [N].");
+           "optionally normal_strength_n, shear_strength_n [N] (no other columns).");
   s.real("normal strength", 31.3, 0, inf, "N",
          "Mean tensile strength phi_n of a bond, a force (thesis eq. 6.1: phi = 4 sigma R^2).", true);
   s.real("shear strength", 31.3, 0, inf, "N", "Mean shear strength phi_s of a bond, a force.", true);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <system_error>
 
 #include <unistd.h>
@@ -81,9 +82,26 @@ nlohmann::json parse_json_input(const std::string &text, const std::string &path
   if (json_depth(text) > max_json_depth)
     throw DeckError(path + ": arrays or objects nested more than " + std::to_string(max_json_depth) +
                     " levels deep: expected a " + what);
+  // nlohmann keeps the last of two equal keys in an object; a deck or
+  // sample that names a key twice is refused instead (one of the two values
+  // would be ignored without a word).
+  std::vector<std::set<std::string>> keys_of_open_objects;
+  const auto refuse_repeated_keys = [&](int, nlohmann::json::parse_event_t event, nlohmann::json &parsed)
+  {
+    using Event = nlohmann::json::parse_event_t;
+    if (event == Event::object_start)
+      keys_of_open_objects.emplace_back();
+    else if (event == Event::object_end)
+      keys_of_open_objects.pop_back();
+    else if (event == Event::key && !keys_of_open_objects.back().insert(parsed.get<std::string>()).second)
+      throw DeckError(path + ": key '" + escaped(parsed.get<std::string>()) +
+                      "' appears twice in one object: expected each key once (the last would win silently) in a " +
+                      what);
+    return true;
+  };
   try
   {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, refuse_repeated_keys);
   }
   catch (const nlohmann::json::exception &e)
   {

@@ -5,10 +5,12 @@
 #include "app/io/text.h"
 
 #include "dem/contact_model.h"
+#include "dem/neighbors.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 
@@ -620,5 +622,47 @@ void check_test_cell(const SampleFile &sample, const std::string &path)
   if (!(gap > 0))
     fail_key(path, "walls[" + std::to_string(cell.top) + "].point_m", format_number(gap) + " m from the bottom platen",
              "expected the top platen above the bottom one, along the bottom platen's normal");
+  // Every ball inside the cell, and no two piled on one another: a ball
+  // beyond a wall never meets it (the test would measure nothing, or a
+  // ball that falls for ever), and balls at one point have no contact
+  // normal (and make every neighbour search quadratic).
+  const dem::ParticleStore &balls = sample.snapshot.particles;
+  const auto where = [&](dem::Index b)
+  {
+    const dem::Vec3 &x = balls.position[b];
+    return format_number(x.x()) + ", " + format_number(x.y()) + ", " + format_number(x.z());
+  };
+  const auto row = [](dem::Index b) { return "balls.rows[" + std::to_string(b) + "]"; };
+  for (dem::Index b = 0; b < balls.size(); ++b)
+  {
+    const double height = (balls.position[b] - bottom.point).dot(up);
+    if (!(height >= 0 && height <= gap))
+      fail_key(path, row(b), where(b) + " m",
+               "expected a ball centre between the platens (0 ... " + format_number(gap) +
+                 " m above the bottom platen; this one is " + format_number(height) + " m)");
+    if (cell.lateral >= 0)
+    {
+      // A removed lateral wall (an unconfined test) confines nothing, but a
+      // ball farther from the axis than the cell's diameter is no part of
+      // the sample: it would carry load alone between the platens.
+      const dem::Wall &side = walls[cell.lateral];
+      const double reach = side.enabled ? side.radius : std::max(side.radius, cell.diameter);
+      const dem::Vec3 axis = side.direction.normalized(), off = balls.position[b] - side.point;
+      const double radial = (off - off.dot(axis) * axis).norm();
+      if (!(radial <= reach))
+        fail_key(path, row(b), where(b) + " m",
+                 "expected a ball centre within " + format_number(reach) + " m of the lateral wall's axis (" +
+                   (side.enabled ? "its radius" : "the cell's diameter: the wall is removed") + "; this one is " +
+                   format_number(radial) + " m from it)");
+    }
+  }
+  if (const std::optional<dem::Pair> deep = dem::first_deep_overlap(balls, 0.5))
+  {
+    const auto [i, j] = *deep;
+    const double overlap = balls.radius[i] + balls.radius[j] - (balls.position[j] - balls.position[i]).norm();
+    fail_key(path, row(j), where(j) + " m",
+             "expected balls that overlap by at most half the smaller radius (it overlaps " + row(i) + " by " +
+               format_number(overlap) + " m)");
+  }
 }
 } // namespace demvv

@@ -83,8 +83,12 @@ void write_sample(const std::string &path, const SampleFile &sample);
 SampleFile read_sample(const std::string &path);
 
 /// Refuses (one-line DeckError naming `path`) a sample a uniaxial test
-/// cannot run on: no platens, a cell without size, or platens that do not
-/// face each other across a positive gap (the strain would never grow).
+/// cannot run on: no platens, a cell without size, platens that do not
+/// face each other across a positive gap (the strain would never grow), a
+/// ball centre outside the platens or farther from the lateral wall's axis
+/// than its radius (than the cell's diameter when the wall is removed), or
+/// two balls that overlap by more than half the smaller radius (balls piled
+/// on one point).
 void check_test_cell(const SampleFile &sample, const std::string &path);
 
 /// The preparation report as JSON.

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace demvv
@@ -55,8 +56,9 @@ void declare_scene(DeckSchema &s)
          "CSV of balls, relative to the deck: x_m,y_m,z_m,radius_m [m] and optional vx_mps,vy_mps,vz_mps "
          "[m/s], wx_radps,wy_radps,wz_radps [rad/s], hold_velocity, hold_spin (0/1: keep the given "
          "velocity / spin whatever the forces), density_kgpm3 [kg/m^3], kn_npm, ks_npm [N/m], friction "
-         "[-] (these four override the balls section per ball).  Every value must be a finite number, and no "
-         "two balls may start overlapping by more than half the smaller radius.");
+         "[-] (these four override the balls section per ball).  Every value must be a finite number, every "
+         "column one of these (once), and no two balls may start overlapping by more than half the smaller "
+         "radius.");
   s.leave();
   declare_ball_properties(s);
   declare_contact_law(s);
@@ -120,28 +122,24 @@ dem::Index parse_index(const Deck &deck, const std::string &key, const std::stri
 /// Deliberately pre-compressed pairs (a fraction of a percent) pass.
 void check_overlaps(const CsvTable &t, const dem::ParticleStore &p)
 {
-  dem::NeighborList touching(0);
-  touching.rebuild(p);
-  for (const dem::Pair &pair : touching.pairs())
-  {
-    const auto [i, j] = pair;
-    const double distance = (p.position[j] - p.position[i]).norm();
-    const double overlap = p.radius[i] + p.radius[j] - distance;
-    const double smaller = std::min(p.radius[i], p.radius[j]);
-    if (overlap > 0.5 * smaller)
-    {
-      std::ostringstream what;
-      what << "particle " << j << " overlaps particle " << i << " (line " << t.line(static_cast<std::size_t>(i))
-           << ") by " << overlap << " m at the start: expected balls that overlap by at most half the smaller "
-           << "radius (" << 0.5 * smaller << " m)";
-      t.fail(static_cast<std::size_t>(j), "x_m", what.str());
-    }
-  }
+  const std::optional<dem::Pair> deep = dem::first_deep_overlap(p, 0.5);
+  if (!deep)
+    return;
+  const auto [i, j] = *deep;
+  const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+  std::ostringstream what;
+  what << "particle " << j << " overlaps particle " << i << " (line " << t.line(static_cast<std::size_t>(i)) << ") by "
+       << overlap << " m at the start: expected balls that overlap by at most half the smaller "
+       << "radius (" << 0.5 * std::min(p.radius[i], p.radius[j]) << " m)";
+  t.fail(static_cast<std::size_t>(j), "x_m", what.str());
 }
 
 dem::ParticleStore parse_particles(const Deck &deck)
 {
   const CsvTable t = CsvTable::read(deck.file("particles/file"));
+  t.allow_only({"x_m", "y_m", "z_m", "radius_m", "vx_mps", "vy_mps", "vz_mps", "wx_radps", "wy_radps", "wz_radps",
+                "density_kgpm3", "kn_npm", "ks_npm", "friction", "hold_velocity", "hold_spin"},
+               "a particle file");
   if (t.rows() == 0)
     throw DeckError(t.path() + ": no particles: expected at least one row after the header");
   for (const char *c : {"x_m", "y_m", "z_m", "radius_m"})
@@ -263,6 +261,7 @@ std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, dem::Index n)
   if (bonds.install != "list")
     return out;
   const CsvTable t = CsvTable::read(bonds.list_file);
+  t.allow_only({"first", "second", "normal_strength_n", "shear_strength_n"}, "a bond list");
   for (std::size_t r = 0; r < t.rows(); ++r)
   {
     for (const char *c : {"first", "second"})

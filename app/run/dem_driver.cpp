@@ -91,6 +91,7 @@ public:
       return;
     protocol_.record(sim);
     sim.check_energy_ledger(dem::LedgerLimits{});
+    sim.check_contact_overlaps(0.5);
   }
 
   bool last() const { return last_; }

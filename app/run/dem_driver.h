@@ -24,7 +24,9 @@
 //   - an energy ledger that doubts itself: at every row a runaway of the
 //     kinetic plus strain energy, local damping that gives energy back, or
 //     a broken balance (dem::LedgerLimits, dem::Simulation::
-//     check_energy_ledger) stops the run as a fault like any other;
+//     check_energy_ledger) stops the run as a fault like any other, and so
+//     does a contact that overlaps by more than half a radius
+//     (check_contact_overlaps);
 //   - interruption: SIGINT or SIGTERM end the run at the end of the current
 //     step; every output is flushed, summary.json says "interrupted" and a
 //     checkpoint is written (exit code 130 or 143);

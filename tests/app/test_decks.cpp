@@ -171,8 +171,11 @@ TEST_CASE("bad Burger's and rate entries are refused with one line naming the ke
 {
   const auto with = [](const std::string &name, const std::string &section, const std::string &entry)
   {
-    return write_deck(name, scene("subsection contact law\n  set law = burgers\nend\nsubsection " + section +
-                                  "\n  set " + entry + "\nend\n"));
+    // One section each: a deck opens a section once.
+    const std::string law = "subsection contact law\n  set law = burgers\n";
+    return write_deck(name, scene(section == "contact law"
+                                    ? law + "  set " + entry + "\nend\n"
+                                    : law + "end\nsubsection " + section + "\n  set " + entry + "\nend\n"));
   };
   require_one_line_naming(error_of(with("b1.prm", "contact law", "normal kelvin viscosity = 0")),
                           {"b1.prm", "normal kelvin viscosity", "0"});

@@ -4,12 +4,15 @@
 #include "dem/bonds.h"
 #include "dem/measure.h"
 #include "dem/neighbors.h"
+#include "dem/protocol_uniaxial.h"
 #include "dem/sample_lattice.h"
 #include "dem/stability.h"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 using namespace demtest;
@@ -101,6 +104,136 @@ TEST_CASE("the neighbour grid takes balls at huge coordinates without casting th
   CHECK(pairs_of({Vec3(0, 0, 0), Vec3(1.5e-3, 0, 0), Vec3(1e300, 0, 0), Vec3(1e300, 1.5e-3, 0)}) == 2);
   CHECK(pairs_of({Vec3(-1e308, 0, 0), Vec3(1e308, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 1.5e-3)}) == 1);
   CHECK(pairs_of({Vec3(0, 0, 0), Vec3(0, 1e-300, 0), Vec3(0, 0, 1e300)}) == 1);
+}
+
+TEST_CASE("the cell search finds the brute-force pairs and the first deep overlap", "[dem][neighbors]")
+{
+  // A random cloud of unequal balls, dense enough for deep overlaps: the
+  // candidate list equals the O(N^2) oracle, and the first pair found
+  // overlapping by more than a fraction of the smaller radius is the first
+  // such pair of the oracle's order, or none when the oracle finds none.
+  dem::ParticleStore p;
+  std::uint64_t state = 12345;
+  const auto uniform = [&state]()
+  {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) * 0x1.0p-53;
+  };
+  for (int k = 0; k < 400; ++k)
+  {
+    dem::BallSpec b;
+    b.position = Vec3(uniform(), uniform(), uniform()) * 0.02;
+    b.radius = 5e-4 + 1e-3 * uniform();
+    p.add(b);
+  }
+  dem::NeighborList list(2e-4);
+  list.rebuild(p);
+  CHECK(list.pairs() == dem::brute_force_pairs(p, 2e-4));
+  for (const double fraction : {0.2, 0.5, 0.9, 2.0})
+  {
+    std::optional<dem::Pair> expected;
+    for (const dem::Pair &pair : dem::brute_force_pairs(p, 0))
+    {
+      const auto [i, j] = pair;
+      const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+      if (overlap > fraction * std::min(p.radius[i], p.radius[j]))
+      {
+        expected = pair;
+        break;
+      }
+    }
+    const std::optional<dem::Pair> found = dem::first_deep_overlap(p, fraction);
+    CHECK(found.has_value() == expected.has_value());
+    if (found && expected)
+    {
+      // The cell order visits i ascending; for one i, its partners in cell order.
+      CHECK(found->first == expected->first);
+      const auto [i, j] = *found;
+      CHECK(p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm() >
+            fraction * std::min(p.radius[i], p.radius[j]));
+    }
+  }
+  // 200 000 balls on one point: the full candidate list would hold 2e10
+  // pairs (a hang, then memory); the search stops at the first pair.
+  dem::ParticleStore pile;
+  pile.reserve(200000);
+  for (int k = 0; k < 200000; ++k)
+  {
+    dem::BallSpec b;
+    b.radius = 1e-3;
+    pile.add(b);
+  }
+  CHECK(dem::first_deep_overlap(pile, 0.5) == std::optional<dem::Pair>(dem::Pair(0, 1)));
+}
+
+TEST_CASE("a test stops when its platens close on no sample or a contact overlaps beyond half a radius",
+          "[dem][protocol]")
+{
+  // One ball on the bottom platen, the top platen 3r above: the ball is
+  // sent sideways out of the cell, so the top platen closes on nothing.
+  // Below one ball radius of gap no sample is left between the platens:
+  // the test stops there (a creep load beyond the strength ends the same
+  // way, the balls squeezed out) instead of measuring strains past 100 %.
+  const double r = 1e-3, kn = 1e6;
+  const auto cell = [&](const Vec3 &velocity)
+  {
+    dem::WallSet walls;
+    walls.add(floor_wall(kn));
+    dem::Wall top = floor_wall(kn);
+    top.name = "top";
+    top.point = Vec3(0, 0, 3 * r);
+    top.direction = -Vec3::UnitZ();
+    walls.add(top);
+    dem::ParticleStore p;
+    dem::BallSpec b = ball(Vec3(0, 0, r), r, kn);
+    b.velocity = velocity;
+    p.add(b);
+    return make_sim(std::move(p), std::move(walls));
+  };
+  dem::UniaxialSettings settings;
+  settings.platen_speed = 10; // m/s: the gap closes in 3e-4 s
+  settings.final_strain = 0.99;
+  auto escaped = cell(Vec3(20, 0, 0));
+  dem::UniaxialCompression test(escaped, 0, 1, dem::pi * r * r, settings);
+  std::string message;
+  try
+  {
+    while (escaped.step(test))
+      ;
+  }
+  catch (const dem::NumericalFault &f)
+  {
+    message = f.what();
+  }
+  CHECK(message.find("the sample collapsed") != std::string::npos);
+  // It stopped at the first step whose gap was below r (the platen moves
+  // 10 m/s * dt, a few hundredths of r, per step).
+  const double gap = escaped.walls()[1].point.z();
+  CHECK(gap < r);
+  CHECK(gap > 0.9 * r);
+
+  // The ball kept in the cell: the platen squeezes it, and the overlap
+  // check names it once the overlap passes half its radius.
+  auto squeezed = cell(Vec3::Zero());
+  dem::UniaxialCompression press(squeezed, 0, 1, dem::pi * r * r, settings);
+  double deepest = 0;
+  message.clear();
+  try
+  {
+    while (squeezed.step(press))
+    {
+      squeezed.check_contact_overlaps(0.5);
+      deepest = std::max(deepest, squeezed.walls().state(0, 0).overlap);
+    }
+  }
+  catch (const dem::NumericalFault &f)
+  {
+    message = f.what();
+    CHECK(f.particle == 0);
+  }
+  CHECK(message.find("contact overlap beyond the law's meaning") != std::string::npos);
+  CHECK(deepest <= 0.5 * r); // the last overlap checked and passed
+  CHECK(deepest > 0.45 * r); // ... and it stopped at the first one beyond
 }
 
 TEST_CASE("a bond break is logged with the trial forces that broke it", "[dem][bonds]")
