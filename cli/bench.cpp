@@ -37,7 +37,8 @@ int command_bench(const BenchOptions &o)
   std::string source;
   if (!o.sample.empty())
   {
-    TestSample sample = open_test_sample(load_or_prepare_sample(o.sample), ball, platen, std::move(model), settings);
+    TestSample sample =
+      open_test_sample(load_or_prepare_sample(o.sample, true), ball, platen, std::move(model), settings);
     sim_ptr = std::move(sample.sim);
     cell = std::move(sample.cell);
     source = "prepared sample";

@@ -379,10 +379,10 @@ std::string cached_sample_file(const std::string &path, const std::vector<std::s
   return file;
 }
 
-SampleFile load_or_prepare_sample(const std::string &path)
+SampleFile load_or_prepare_sample(const std::string &path, bool progress)
 {
   const bool is_deck = path.size() > 4 && path.compare(path.size() - 4, 4, ".prm") == 0;
-  const std::string file = is_deck ? cached_sample_file(path, {}, true) : path;
+  const std::string file = is_deck ? cached_sample_file(path, {}, progress) : path;
   SampleFile sample = read_sample(file);
   check_test_cell(sample, file);
   return sample;

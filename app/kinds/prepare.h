@@ -96,6 +96,7 @@ void prune_sample_cache(const std::string &dir, std::size_t keep, std::chrono::h
 std::string cached_sample_file_name(const std::string &path, const std::vector<std::string> &overrides);
 
 /// Reads a sample: a .json sample file, or a prepare deck (.prm) whose
-/// sample is prepared on first use and cached in sample_cache_dir().
-SampleFile load_or_prepare_sample(const std::string &path);
+/// sample is prepared on first use and cached in sample_cache_dir(),
+/// showing its progress when `progress`.
+SampleFile load_or_prepare_sample(const std::string &path, bool progress);
 } // namespace demvv

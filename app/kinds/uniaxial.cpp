@@ -197,10 +197,11 @@ Setup lattice_setup(const UniaxialSpec &spec)
 }
 
 /// A prepared sample with the deck's properties; its bonds are kept
-/// (install = sample), replaced (touching) or removed (none).
-Setup sample_setup(const UniaxialSpec &spec)
+/// (install = sample), replaced (touching) or removed (none).  A sample
+/// prepared first shows its progress when `progress` (not under --quiet).
+Setup sample_setup(const UniaxialSpec &spec, bool progress)
 {
-  SampleFile file = load_or_prepare_sample(spec.sample_file);
+  SampleFile file = load_or_prepare_sample(spec.sample_file, progress);
   Setup s;
   s.rate = spec.rate.scaling(run_strain_rate(spec, file.cell.height));
   const nlohmann::json preparation = file.preparation;
@@ -609,7 +610,7 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
 UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options)
 {
   const int threads = apply_threads(options);
-  Setup setup = spec.from_file ? sample_setup(spec) : lattice_setup(spec);
+  Setup setup = spec.from_file ? sample_setup(spec, options.progress) : lattice_setup(spec);
   UniaxialResult result;
   result.sim = std::move(setup.sim);
   UniaxialProtocol protocol(spec, setup, *result.sim, result.series);

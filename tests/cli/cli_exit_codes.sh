@@ -21,6 +21,14 @@ grep -q "step" "$out/err" && grep -q "particle" "$out/err" || fail "the fault di
 [ $? -eq 3 ] || fail "a fixed step above the bound must stop with exit 3"
 grep -q "exceeds the critical step bound" "$out/err" || fail "the diagnostic says the step is too large"
 
+# --quiet silences the preparation of a sample prepared on first use too
+# (it printed its 22 stage lines): one line, the final one, on stderr.
+DEMVV_CACHE="$out/cache" "$demvv" run "$data/../../cases/t61_damage/case.prm" --out "$out/quiet" --threads 1 --quiet \
+  --set "sample/file=$data/prepare_200.prm" --set "loading/final strain=0.002" 2> "$out/err" ||
+  fail "a run on a 200-ball prepared sample must succeed"
+[ "$(wc -l < "$out/err")" -eq 1 ] || fail "--quiet must leave one line on stderr, not $(wc -l < "$out/err")"
+grep -q "^demvv: done" "$out/err" || fail "the line --quiet leaves is the final one"
+
 # A thread count beyond the machine is clamped to its cores (not an abort
 # in libgomp, not a run thousands of times slower).
 "$demvv" run "$data/../../cases/v01_linear_impact/case.prm" --out "$out/threads" --threads 1024 --quiet 2> "$out/err" ||

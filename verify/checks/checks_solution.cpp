@@ -6,14 +6,15 @@
 //
 //  V26  the time step: the automatic step's safety factor (the fraction of
 //       the critical step bound, 0.8 by default) halved twice, 0.8, 0.4,
-//       0.2.  The relative change of the peak stress and of the stress at a
-//       fixed early strain (0.3 %, before the cascade of breaks) between
-//       successive levels, their observed order where the changes allow
-//       one, and a bound on the discretisation error of the 0.8 result:
-//       Roache's grid convergence index with the safety factor as the mesh
-//       size (Celik et al. 2008, app/kinds/continuum_gci.h), safety
-//       factor 1.25 when the levels converge monotonically, else 3 times the
-//       largest distance from the 0.8 result to the others.
+//       0.2, with seeds 1-10 at every level (common random numbers: a seed
+//       draws the same packing and bond strengths at every level, so a
+//       change is measured seed by seed, paired).  For the peak stress and
+//       the stress at a fixed early strain (0.3 %, before the cascade of
+//       breaks): the mean paired change between successive levels with its
+//       95 % interval ("not resolved" when it includes zero, never an
+//       order), and U_num, a 95 % bound on the time-step error of the 0.8
+//       result, computed as `demvv time-step` computes it
+//       (app/studies/time_step_study.h).
 //  V27  the loading rate: the top platen at v, v/2, v/4 (0.02, 0.01 and
 //       0.005 m/s); the quasi-static limit that the thesis (§6.3, Fig. 6.4)
 //       finds reached at 0.01 m/s and below.
@@ -53,18 +54,14 @@
 // second per member, not the thesis's sample.  On a lattice a seed draws
 // only the bond strengths; on the prepared sample it draws the packing too.
 //
-// Run times, one thread on the 2-core reference machine: --quick about 25 s
-// for the three checks in one process (the ensemble, 11 s, is run once and
-// shared; each check's test runs it again); --full about 14 minutes: 19 s
-// for a member at safety 0.8 and 0.01 m/s, V26 3 minutes, V27 2.5
-// minutes, the ensemble 7 minutes with its ten preparations.
+// Run times: BENCHMARKS.md, "A newcomer's times" (V26 --quick).
 #include "verify/checks/checks_solution.h"
 #include "app/kinds/deck_kinds.h"
 
 #include "app/decks/csv_input.h"
 #include "app/kinds/continuum_cylinder.h"
-#include "app/kinds/continuum_gci.h"
 #include "app/studies/sweep.h"
+#include "app/studies/time_step_study.h"
 #include "verify/checks/checks_support.h"
 
 #include <algorithm>
@@ -276,65 +273,57 @@ std::string peak_change_reason(const std::string &perturbation, const SeedScatte
 
 // @sect3{V26: the time step}
 
-/// Roache's factor of safety with three levels and an observed order, and
-/// without one (Roache 1998: 1.25 and 3).
-constexpr double gci_safety_observed = 1.25;
-constexpr double gci_safety_assumed = 3;
+/// Seeds per level: each seed draws the same packing and bond strengths at
+/// every safety (common random numbers), so the change between two levels
+/// is measured seed by seed.  All of V28's seeds: at safety 0.8 its members
+/// are the level's, and with five seeds (the time-step study's least,
+/// app/studies/time_step_study.h) the 95 % half-width of a paired change
+/// at the finest level, t(0.975, 4) / sqrt(5) = 1.24 of its scatter,
+/// leaves U_num no room below the tolerance on the quick lattice (7.5 %
+/// against 5.7 %, 2026-12-02): ten give 0.72.
+constexpr int step_study_seeds = ensemble_seeds;
 
-/// A bound on the relative discretisation error of the coarsest of three
-/// levels (phi[2], at h[2]): with monotone convergence, Roache's GCI of that
-/// level against the Richardson-extrapolated value; otherwise (oscillating
-/// or unchanged levels) the largest distance from the coarsest to the
-/// others times 3.
-struct CoarseErrorBound
-{
-  double relative = 0; ///< the bound, relative to the coarsest level's value
-  std::string how;     ///< which estimate, for the notes
-};
-
-CoarseErrorBound coarse_error_bound(const double h[3], const double phi[3])
-{
-  const GciResult g = grid_convergence_index(h, phi, gci_safety_observed);
-  if (g.monotone && std::isfinite(g.order) && std::isfinite(g.extrapolated))
-    return {gci_safety_observed * std::abs(phi[2] - g.extrapolated) / std::abs(phi[2]),
-            "monotone, observed order " + num(g.order) + ", extrapolated " + num(g.extrapolated) +
-              " Pa, safety factor 1.25"};
-  const double spread = std::max(std::abs(phi[2] - phi[1]), std::abs(phi[2] - phi[0]));
-  return {gci_safety_assumed * spread / std::abs(phi[2]),
-          std::string(g.monotone ? "no observed order" : "oscillating") +
-            ": 3 x the largest distance to the finer levels"};
-}
-
-/// One quantity of the time-step study and what its changes are held to.
+/// One quantity of the time-step study and what it is held to.
 struct StepQuantity
 {
   std::string name;
-  std::vector<double> phi;     ///< at safety 0.8, 0.4, 0.2 [Pa]
-  double change_tolerance = 0; ///< on a relative change between levels
-  double bound_tolerance = 0;  ///< on the relative error bound at 0.8
+  TimeStepAnalysis analysis;   ///< over the levels and seeds
+  double change_tolerance = 0; ///< on the relative mean paired change between levels
+  double bound_tolerance = 0;  ///< on U_num at 0.8, relative to the mean there
   ToleranceClass tolerance_class = ToleranceClass::C;
   std::string change_reason, bound_reason;
 };
 
-void judge_step_quantity(const StepQuantity &q, const std::vector<double> &safeties, CheckOutcome &out)
+void judge_step_quantity(const StepQuantity &q, CheckOutcome &out)
 {
-  const ConvergenceTable t =
-    change_table(q.name + ": relative change to the next halved safety factor (no order claimed)",
-                 "time step safety factor [-] (the step is proportional to it)", safeties, q.phi);
-  for (std::size_t k = 0; k < t.rows.size(); ++k)
-    out.metrics.push_back(
-      bound(q.name + ": relative change from safety " + num(safeties[k]) + " to " + num(safeties[k + 1]),
-            t.rows[k].error, q.change_tolerance, false, q.tolerance_class, q.change_reason));
-  out.tables.push_back(t);
-  const double h[3] = {safeties[2], safeties[1], safeties[0]};
-  const double fine_to_coarse[3] = {q.phi[2], q.phi[1], q.phi[0]};
-  const CoarseErrorBound u = coarse_error_bound(h, fine_to_coarse);
-  out.metrics.push_back(
-    bound(q.name + ": bound on the relative discretisation error at safety " + num(safeties[0]) + " (the default)",
-          u.relative, q.bound_tolerance, false, q.tolerance_class, q.bound_reason));
-  out.notes.push_back(q.name + " at safety 0.8, 0.4, 0.2: " + num(q.phi[0]) + ", " + num(q.phi[1]) + ", " +
-                      num(q.phi[2]) + " Pa; observed order " + num(t.last_order()) +
-                      "; error bound at 0.8: " + num(100 * u.relative) + " % (" + u.how + ")");
+  const TimeStepAnalysis &a = q.analysis;
+  std::vector<double> means;
+  for (const EnsembleStatistics &l : a.level)
+    means.push_back(l.mean);
+  out.tables.push_back(
+    change_table(q.name + ": relative change of the mean over seeds to the next halved safety factor (no order "
+                          "claimed)",
+                 "time step safety factor [-] (the step is proportional to it)", a.safety, means));
+  std::string changes;
+  for (std::size_t k = 0; k < a.change.size(); ++k)
+  {
+    const LevelChange &c = a.change[k];
+    const double scale = std::abs(a.level[k + 1].mean);
+    out.metrics.push_back(bound(
+      q.name + ": mean paired change from safety " + num(a.safety[k]) + " to " + num(a.safety[k + 1]) + ", relative",
+      std::abs(c.difference.mean) / scale, q.change_tolerance, false, q.tolerance_class, q.change_reason));
+    changes += (k ? "; " : "") + num(a.safety[k]) + " to " + num(a.safety[k + 1]) + ": " +
+               num(c.difference.mean / scale) + " +- " + num(c.difference.ci95 / scale) + " (95 %, " +
+               (c.resolved ? "resolved" : "not resolved") + ")";
+  }
+  const double u_num = a.error_bound.front() / std::abs(a.level.front().mean);
+  out.metrics.push_back(bound(q.name + ": U_num, the 95 % bound on the time-step error at safety " +
+                                num(a.safety.front()) + " (the default), relative",
+                              u_num, q.bound_tolerance, false, q.tolerance_class, q.bound_reason));
+  out.notes.push_back(q.name + ", mean over " + std::to_string(a.level.front().n) +
+                      " seeds at safety 0.8, 0.4, 0.2: " + num(means[0]) + ", " + num(means[1]) + ", " + num(means[2]) +
+                      " Pa; paired changes relative to the finer level " + changes + "; U_num(0.8) " +
+                      num(100 * u_num) + " % of the mean");
 }
 } // namespace
 
@@ -342,55 +331,94 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
 {
   const BulkStudy s = bulk_study(ctx);
   const std::vector<double> safeties = {0.8, 0.4, 0.2};
-  const std::vector<MemberResult> r = run_levels(ctx, s, {"motion/time step safety", safeties});
+  // Safety 0.8 is the default: the seed ensemble's first seeds (V28) are
+  // its members; the finer levels run the same seeds.
+  const std::vector<MemberResult> &ensemble = seed_ensemble(ctx);
+  const std::vector<MemberResult> finer =
+    run_levels(ctx, s, {"motion/time step safety", {safeties[1], safeties[2]}, step_study_seeds, 1});
+  const auto seeds = std::ptrdiff_t(step_study_seeds);
+  const std::vector<std::vector<MemberResult>> level = {{ensemble.begin(), ensemble.begin() + seeds},
+                                                        {finer.begin(), finer.begin() + seeds},
+                                                        {finer.begin() + seeds, finer.end()}};
+  const auto per_level = [&](std::vector<double> (*quantity)(const std::vector<MemberResult> &))
+  {
+    std::vector<std::vector<double>> v;
+    for (const std::vector<MemberResult> &l : level)
+      v.push_back(quantity(l));
+    return v;
+  };
   const SeedScatter scatter = seed_scatter(ctx);
-  const MemberResult &coarsest = r.front();
-  const double step_stress = coarsest.modulus * coarsest.series.strain_per_step;
-  const std::string gci = "Roache's GCI (Celik et al. 2008) with the safety factor as the mesh size, safety factor "
-                          "1.25 with an observed order, 3 without (about 95 % coverage)";
+  double step_stress = 0; // the initial modulus times one step's strain at 0.8, mean over the seeds
+  for (const MemberResult &m : level[0])
+    step_stress += m.modulus * m.series.strain_per_step / double(seeds);
+  const TimeStepAnalysis fixed_analysis = analyse_time_step(safeties, per_level(stresses_at_fixed));
+  const std::string u_num_how = "U_num: the paired bound |mean| + 95 % half-width on the change from 0.8 to the "
+                                "finest level, plus the finest level's own error bounded as for first order "
+                                "(app/studies/time_step_study.h, as demvv time-step computes it)";
 
   StepQuantity peak{"peak stress",
-                    peaks(r),
+                    analyse_time_step(safeties, per_level(peaks)),
                     0.5 * scatter.sd,
                     0.5 * scatter.single_95,
                     ToleranceClass::D,
-                    peak_change_reason("halving the step", scatter),
-                    gci +
-                      ", for one run; held to half the seed ensemble's 95 % half-width of one run at the same "
-                      "coverage (t(0.975, n - 1) sd / mean = " +
-                      num(scatter.single_95) +
-                      ", V28): added in "
-                      "quadrature it widens the band by at most 12 %"};
+                    "class D: halving the step can reorder the cascade of bond breaks at the peak and so select "
+                    "another of the sample's failure paths, as another seed would; the systematic part, the mean of " +
+                      std::to_string(step_study_seeds) +
+                      " paired changes, must stay below half the seed ensemble's relative standard deviation (" +
+                      num(scatter.sd) + " over " + std::to_string(ensemble_seeds) +
+                      " seeds, V28): added in quadrature it widens the band the result is quoted with by at most "
+                      "12 %",
+                    u_num_how +
+                      "; held to half the seed ensemble's 95 % half-width of one run at the same coverage "
+                      "(t(0.975, n - 1) sd / mean = " +
+                      num(scatter.single_95) + ", V28): added in quadrature it widens the band by at most 12 %"};
   const std::string at = "stress at " + num(100 * s.fixed_strain) + " % strain";
-  const double one_step = step_stress / std::abs(coarsest.series.stress_at_fixed);
+  const double one_step = step_stress / std::abs(fixed_analysis.level.front().mean);
   StepQuantity fixed{at,
-                     stresses_at_fixed(r),
+                     fixed_analysis,
                      one_step,
                      one_step,
                      ToleranceClass::C,
                      "class C: early in the loading, before the cascade, a bond break or contact change falls "
-                     "inside a step; the change must stay within one step's worth at safety 0.8, the initial "
-                     "modulus times one step's strain (" +
-                       num(step_stress) + " Pa)",
-                     gci + "; held to one step's worth at safety 0.8 (" + num(step_stress) + " Pa)"};
+                     "inside a step; the mean paired change must stay within one step's worth at safety 0.8, the "
+                     "initial modulus times one step's strain (" +
+                       num(step_stress) + " Pa, the mean over the seeds)",
+                     u_num_how + "; held to one step's worth at safety 0.8 (" + num(step_stress) + " Pa)"};
   CheckOutcome out;
   std::vector<Curve> curves;
   for (const StepQuantity &q : {peak, fixed})
   {
-    judge_step_quantity(q, safeties, out);
-    Curve c = curve(q.name, safeties, q.phi, CurveStyle::markers_and_line);
+    judge_step_quantity(q, out);
+    std::vector<double> means, every_h, every_value;
+    for (std::size_t k = 0; k < safeties.size(); ++k)
+    {
+      means.push_back(q.analysis.level[k].mean);
+      for (const MemberResult &m : level[k])
+      {
+        every_h.push_back(safeties[k]);
+        every_value.push_back(q.name == "peak stress" ? m.peak : m.series.stress_at_fixed);
+      }
+    }
+    Curve c = curve(q.name + ", mean over seeds", safeties, means, CurveStyle::markers_and_line);
     c.y_scale = 1e-6;
     curves.push_back(c);
+    Curve members = curve(q.name + ", each seed", every_h, every_value, CurveStyle::points);
+    members.y_scale = 1e-6;
+    curves.push_back(members);
   }
-  out.notes.push_back("one step at safety 0.8 strains the sample by " + num(coarsest.series.strain_per_step) +
-                      ", which the initial modulus turns into " + num(step_stress) + " Pa (" +
-                      num(step_stress / coarsest.peak) + " of the peak stress)");
-  out.notes.push_back(s.description + "; run time of the three members " + num(total_seconds(r)) + " s");
+  out.notes.push_back("one step at safety 0.8 strains the sample by " + num(level[0].front().series.strain_per_step) +
+                      " (seed 1), which the initial modulus turns into " + num(step_stress) + " Pa (" +
+                      num(step_stress / peak.analysis.level.front().mean) + " of the peak stress)");
+  out.notes.push_back(s.description + "; seeds 1-" + std::to_string(step_study_seeds) +
+                      " at every level (safety 0.8: the V28 ensemble's members); run time of the finer levels' " +
+                      std::to_string(finer.size()) + " members " + num(total_seconds(finer)) + " s");
   Figure f = make_figure("time_step_safety", "Peak stress against the time step safety factor",
                          "time step safety factor [-] (the step is proportional to it)", "axial stress [MPa]", curves,
                          "The same bonded uniaxial compression at safety factors 0.8 (the default), 0.4 and 0.2 of "
-                         "the critical step bound: the peak stress and the stress at a fixed strain early in the "
-                         "loading.");
+                         "the critical step bound, seeds 1-" +
+                           std::to_string(step_study_seeds) +
+                           " at every level: the peak stress and the stress at a fixed strain early in the loading, "
+                           "each seed and the mean over seeds.");
   f.key = "center right";
   out.figures.push_back(f);
   return out;
