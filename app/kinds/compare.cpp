@@ -352,19 +352,18 @@ CompareResult run_compare(const CompareSpec &spec, const RunOptions &options)
   radius /= double(balls.size());
   const continuum::PackingGeometry packing{d.column("coordination_number_spheres").front(),
                                            1 - d.column("porosity_spheres").front(), radius};
-  const RateScaling rate = spec.dem.rate.scaling(bulk.summary["loading"]["strain_rate_per_s"].get<double>());
+  const RateScaling rate = spec.dem.rate.scaling(bulk.loading.strain_rate);
   const ContactChain chain = contact_chain(spec.dem, rate);
   const continuum::ElasticModuli affine =
     continuum::affine_moduli(packing, chain.reference_stiffness, chain.shear_ratio * chain.reference_stiffness);
 
   // 4. The continuum by both routes, with the same history on the sample's size.
-  LoadingHistory history = spec.dem.history;
-  history.strain_rate = bulk.summary["loading"]["strain_rate_per_s"].get<double>();
+  LoadingHistory history = bulk.loading.history;
   if (history.kind == LoadingHistory::Kind::constant_rate)
     history.final_strain = d.column("axial_strain").back();
   continuum::CylinderSpec test;
-  test.radius = 0.5 * bulk.summary["sample"]["diameter_m"].get<double>();
-  test.height = bulk.summary["sample"]["height_m"].get<double>();
+  test.radius = 0.5 * bulk.sample_diameter;
+  test.height = bulk.sample_height;
   test.platens = spec.bonded_platens ? continuum::Platens::bonded : continuum::Platens::frictionless;
   test.degree = spec.degree;
   test.refinements = spec.refinements;

@@ -165,14 +165,9 @@ struct Setup
   std::unique_ptr<dem::Simulation> sim;
   dem::Specimen cell; ///< wall indices, diameter, height, description
   dem::BondReport bonds;
-  RateScaling rate;
+  ResolvedLoading loading;
+  RateScaling rate; ///< at loading.strain_rate
 };
-
-/// The run strain rate of a test on a sample of the given height [1/s].
-double run_strain_rate(const UniaxialSpec &spec, double height)
-{
-  return spec.by_platen_speed ? spec.platen_speed / height : spec.strain_rate;
-}
 
 Setup lattice_setup(const UniaxialSpec &spec)
 {
@@ -184,7 +179,8 @@ Setup lattice_setup(const UniaxialSpec &spec)
                    "the sample holds fewer than two balls of the given radius: expected a diameter and height of "
                    "several ball diameters");
   Setup s;
-  s.rate = spec.rate.scaling(run_strain_rate(spec, specimen.height));
+  s.loading = resolve_loading(spec, specimen.height);
+  s.rate = spec.rate.scaling(s.loading.strain_rate);
   s.rate.scale_ball_stiffness(specimen.particles);
   s.sim = std::make_unique<dem::Simulation>(std::move(specimen.particles), std::move(specimen.walls),
                                             spec.law.make(s.rate), spec.motion);
@@ -203,7 +199,8 @@ Setup sample_setup(const UniaxialSpec &spec, bool progress)
 {
   SampleFile file = load_or_prepare_sample(spec.sample_file, progress);
   Setup s;
-  s.rate = spec.rate.scaling(run_strain_rate(spec, file.cell.height));
+  s.loading = resolve_loading(spec, file.cell.height);
+  s.rate = spec.rate.scaling(s.loading.strain_rate);
   const nlohmann::json preparation = file.preparation;
   TestSample sample =
     open_test_sample(std::move(file), scaled(spec.balls, s.rate), spec.platens, spec.law.make(s.rate), spec.motion);
@@ -237,12 +234,12 @@ class UniaxialProtocol final : public DemProtocol
 public:
   UniaxialProtocol(const UniaxialSpec &spec, const Setup &setup, const dem::Simulation &sim, Series &series)
     : spec_(spec), cell_(setup.cell), bonds_(setup.bonds), rate_(setup.rate), series_(series),
-      test_(sim, setup.cell.bottom, setup.cell.top, setup.cell.area(), loading(spec, setup.cell.height)),
+      test_(sim, setup.cell.bottom, setup.cell.top, setup.cell.area(), platens(spec, setup.loading)),
       gauges_(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, spec.gauge_thickness),
       circumference_(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, 1.0 + 1e-9),
       spheres_{{dem::Vec3(0, 0, setup.cell.height / 3), spec.sphere_radius * setup.cell.diameter},
                {dem::Vec3(0, 0, 2 * setup.cell.height / 3), spec.sphere_radius * setup.cell.diameter}},
-      strain_rate_(test_.final_speed() / setup.cell.height), history_(history(spec, setup.cell.height))
+      strain_rate_(setup.loading.strain_rate), history_(setup.loading.history)
   {
     // Gauge-thickness study (thesis §5.4.3, Fig. 5.13): the same measure
     // with bands of other thicknesses, against all balls on the circumference.
@@ -260,18 +257,11 @@ public:
     series_ = Series(columns);
   }
 
-  /// The deck's history at the sample's loading rate.
-  static LoadingHistory history(const UniaxialSpec &spec, double height)
-  {
-    LoadingHistory h = spec.history;
-    h.strain_rate = run_strain_rate(spec, height);
-    return h;
-  }
-
-  static dem::UniaxialSettings loading(const UniaxialSpec &spec, double height)
+  /// The platens' schedule of the resolved loading.
+  static dem::UniaxialSettings platens(const UniaxialSpec &spec, const ResolvedLoading &resolved)
   {
     dem::UniaxialSettings load;
-    const LoadingHistory h = history(spec, height);
+    const LoadingHistory &h = resolved.history;
     if (h.stress_controlled())
       load.stress_schedule = [h](double t) { return h.axial_stress(t); };
     else if (h.kind != LoadingHistory::Kind::constant_rate)
@@ -607,11 +597,23 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
   return spec;
 }
 
+ResolvedLoading resolve_loading(const UniaxialSpec &spec, double sample_height)
+{
+  ResolvedLoading r;
+  r.strain_rate = spec.by_platen_speed ? spec.platen_speed / sample_height : spec.strain_rate;
+  r.history = spec.history;
+  r.history.strain_rate = r.strain_rate;
+  return r;
+}
+
 UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options)
 {
   const int threads = apply_threads(options);
   Setup setup = spec.from_file ? sample_setup(spec, options.progress) : lattice_setup(spec);
   UniaxialResult result;
+  result.loading = setup.loading;
+  result.sample_diameter = setup.cell.diameter;
+  result.sample_height = setup.cell.height;
   result.sim = std::move(setup.sim);
   UniaxialProtocol protocol(spec, setup, *result.sim, result.series);
   RunFiles files(options, spec.deck, threads, static_cast<long long>(spec.bonds.settings.seed), protocol.convention(),

@@ -60,7 +60,7 @@ struct UniaxialSpec
   double ramp_time = 0;    ///< s
   double final_strain = 0; ///< -
   bool both_platens = false;
-  LoadingHistory history;   ///< its strain rate is set once the sample's height is known
+  LoadingHistory history;   ///< its strain rate is set by resolve_loading once the sample's height is known
   double time_interval = 0; ///< s between rows of a history other than constant rate (0: 1/500 of it)
   RateSpec rate;
   dem::SimulationSettings motion;
@@ -74,12 +74,26 @@ struct UniaxialSpec
 
 UniaxialSpec parse_uniaxial(const Deck &deck);
 
+/// A test's loading resolved once against its sample's height: the one
+/// strain rate that the rate scaling, the platens' schedule, summary.json
+/// (loading/strain_rate_per_s) and the continuum side of a comparison all
+/// use, and the deck's history at that rate.
+struct ResolvedLoading
+{
+  double strain_rate = 0; ///< 1/s: the platen speed over the sample height, or the deck's strain rate
+  LoadingHistory history; ///< the deck's, at that strain rate
+};
+
+ResolvedLoading resolve_loading(const UniaxialSpec &spec, double sample_height);
+
 struct UniaxialResult
 {
   std::unique_ptr<dem::Simulation> sim;
   Series series;
   nlohmann::json summary;
   RunStatus status;
+  ResolvedLoading loading;
+  double sample_diameter = 0, sample_height = 0; ///< m, the test's cell
 };
 
 UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options);
