@@ -320,8 +320,8 @@ CompareResult run_compare(const CompareSpec &spec, const RunOptions &options)
                             {"fit_r_squared", cs["fit_r_squared"]},
                             {"note", "the deck's contacts with every viscosity x 1e12: each Burger's element is its "
                                      "Maxwell spring on the test's time scale"}};
-  if (out.status.fault || out.status.interrupted_by || !cs["initial_modulus_pa"].is_number() ||
-      !cs["poisson_ratio"].is_number())
+  const ElasticFit &fit = calibration.elastic;
+  if (out.status.fault || out.status.interrupted_by || fit.modulus.points < 2 || fit.poisson.points < 2)
   {
     if (!out.status.fault && !out.status.interrupted_by)
     {
@@ -331,7 +331,7 @@ CompareResult run_compare(const CompareSpec &spec, const RunOptions &options)
     finish(summary);
     return out;
   }
-  const double young = cs["initial_modulus_pa"].get<double>(), poisson = cs["poisson_ratio"].get<double>();
+  const double young = fit.modulus.slope, poisson = fit.poisson.slope;
 
   // 2. The DEM bulk test.
   const UniaxialResult bulk = run_uniaxial(spec.dem, part_options(options, "dem"));

@@ -388,6 +388,13 @@ public:
     row_.clear();
   }
 
+  /// The initial modulus and Poisson's ratio over the deck's fit window.
+  ElasticFit elastic_fit() const
+  {
+    return fit_elastic(series_.column("axial_strain"), series_.column("axial_stress_pa"),
+                       series_.column("radial_strain"), spec_.fit_from, spec_.fit_to);
+  }
+
   std::vector<SeriesFile> series_files() override { return {{&series_, "series.csv", convention()}}; }
 
   nlohmann::json summary(const dem::Simulation &sim, const RunStatus &status, const ContactResolution &resolution,
@@ -395,9 +402,8 @@ public:
   {
     const auto eps = series_.column("axial_strain");
     const auto sig = series_.column("axial_stress_pa");
-    const auto rad = series_.column("radial_strain");
     const auto broken = series_.column("bonds_broken_fraction");
-    const auto [modulus, poisson] = fit_elastic(eps, sig, rad, spec_.fit_from, spec_.fit_to);
+    const auto [modulus, poisson] = elastic_fit();
     const Peak pk = peak(eps, sig);
     double break_strain = 0, break_rate = 0;
     const bool has_breaks = x_at_max_rate(eps, broken, break_strain, break_rate) && break_rate > 0;
@@ -629,6 +635,7 @@ UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options)
   DemOutcome outcome = run_dem(*result.sim, protocol, files, output, options);
   result.status = outcome.status;
   result.summary = std::move(outcome.summary);
+  result.elastic = protocol.elastic_fit();
   return result;
 }
 

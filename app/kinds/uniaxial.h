@@ -21,6 +21,7 @@
 #include "app/decks/loading_history.h"
 #include "app/io/sample_file.h"
 #include "app/io/series.h"
+#include "app/run/analysis.h"
 #include "app/run/dem_driver.h"
 #include "app/run/run.h"
 
@@ -94,6 +95,7 @@ struct UniaxialResult
   RunStatus status;
   ResolvedLoading loading;
   double sample_diameter = 0, sample_height = 0; ///< m, the test's cell
+  ElasticFit elastic;                            ///< over the deck's fit window, as summary.json states it
 };
 
 UniaxialResult run_uniaxial(const UniaxialSpec &spec, const RunOptions &options);
