@@ -409,13 +409,14 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   }
   for (Curve &cv : curves)
     cv.y_scale = 1e-6;
-  Figure f = make_figure("table_7_4_validation", "Peak stress against the temperature-compensated rate",
-                         "temperature-compensated strain rate rate_T [1/s]", "peak stress [MPa]", curves,
-                         "The thesis's Table 7.4 model calibrated at 10 C and 0.1 1/s (one point) and predicted at "
-                         "the held-out conditions of Table 4.1, beside the experiments' law; bars on the predictions: 95 % "
-                         "confidence intervals of the seed-ensemble means; bars on the law at each held-out "
-                         "condition: +- 2 u_val (ASME V&V 20), the band inside which a prediction passes; the "
-                         "viscosities-alone configuration drawn 12 % to the right of its condition.");
+  Figure f =
+    make_figure("table_7_4_validation", "Peak stress against the temperature-compensated rate",
+                "temperature-compensated strain rate rate_T [1/s]", "peak stress [MPa]", curves,
+                "The thesis's Table 7.4 model calibrated at 10 C and 0.1 1/s (one point) and predicted at "
+                "the held-out conditions of Table 4.1, beside the experiments' law; bars on the predictions: 95 % "
+                "confidence intervals of the seed-ensemble means; bars on the law at each held-out "
+                "condition: +- 2 u_val (ASME V&V 20), the band inside which a prediction passes; the "
+                "viscosities-alone configuration drawn 12 % to the right of its condition.");
   f.key = "below";
   f.log_x = true;
   f.log_y = true;
