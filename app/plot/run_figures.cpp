@@ -112,7 +112,14 @@ const std::vector<Line> energy_lines = {
   {"released by broken bonds", "bond_energy_released_j"},
   {"boundary work", "boundary_work_j", 1, CurveStyle::dashed},
   {"gravity work", "gravity_work_j", 1, CurveStyle::dashed},
-  {"residual (balance error)", "energy_residual_j", 1, CurveStyle::points},
+};
+
+/// The balance error in its own figure (beside the ledger it is a line near
+/// zero that hides the small terms), with the boundary work on the right
+/// axis to read it against.
+const std::vector<Line> residual_lines = {
+  {"residual (supplied - held - dissipated)", "energy_residual_j"},
+  {"boundary work, for scale (right axis)", "boundary_work_j", 1, CurveStyle::dashed, true},
 };
 
 const std::vector<Line> broken_by_mode = {
@@ -143,6 +150,8 @@ void uniaxial_figures(const std::string &dir, std::vector<Figure> &out)
   add_figure(out, s, {"bonds_broken_by_mode", "Bonds broken by mode", strain, "bonds broken"}, "axial_strain", 1e2,
              broken_by_mode);
   add_figure(out, s, {"energy", "Energy ledger", strain, "energy [J]"}, "axial_strain", 100, energy_lines);
+  add_figure(out, s, {"energy_residual", "Energy balance error", strain, "residual [J]", "boundary work [J]"},
+             "axial_strain", 100, residual_lines);
   add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [s]"}, "time_s", 1,
              {{"time step", "time_step_s"}});
   add_figure(out, s, {"quasi_static", "Quasi-static indicators", strain, "ratio [-]"}, "axial_strain", 100,
@@ -153,6 +162,8 @@ void scene_figures(const std::string &dir, std::vector<Figure> &out)
 {
   const RunTable s(dir, "series.csv");
   add_figure(out, s, {"energy", "Energy ledger", "time [s]", "energy [J]"}, "time_s", 1, energy_lines);
+  add_figure(out, s, {"energy_residual", "Energy balance error", "time [s]", "residual [J]", "boundary work [J]"},
+             "time_s", 1, residual_lines);
   add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [s]"}, "time_s", 1,
              {{"time step", "time_step_s"}});
   std::vector<Line> counts = {{"contacts", "contacts"}, {"bonds intact", "bonds_intact"}};
