@@ -42,7 +42,7 @@ namespace
 /// MPI ranks refusing at once never run into each other, and returns `code`.
 int refuse(const std::string &why, int code)
 {
-  std::cerr << "demvv: " + why + "\n";
+  std::cerr << "demvv: " + demvv::readable_length(why) + "\n";
   return code;
 }
 } // namespace

@@ -25,6 +25,45 @@ std::string one_line(std::string_view s, char replacement)
   return out;
 }
 
+std::string readable_length(std::string_view s)
+{
+  // Words (runs without a blank) beyond 160 characters keep their first 100
+  // and last 40: an echoed 100 kB value still names what it was.
+  constexpr std::size_t long_word = 160, head = 100, tail = 40, most = 2000;
+  // Cuts fall on UTF-8 character starts, never inside a character.
+  const auto start_at = [](std::string_view t, std::size_t k)
+  {
+    while (k > 0 && k < t.size() && (static_cast<unsigned char>(t[k]) & 0xC0) == 0x80)
+      --k;
+    return k;
+  };
+  const auto cut = [&](std::string_view t, std::size_t keep_head, std::size_t keep_tail, const std::string &gap)
+  {
+    const std::size_t h = start_at(t, keep_head), e = start_at(t, t.size() - keep_tail);
+    return std::string(t.substr(0, h)) + gap + std::string(t.substr(e));
+  };
+  std::string out;
+  std::size_t i = 0;
+  while (i < s.size())
+  {
+    const std::size_t blank = s.find(' ', i);
+    const std::size_t end = blank == std::string_view::npos ? s.size() : blank;
+    const std::string_view word = s.substr(i, end - i);
+    if (word.size() > long_word)
+      out += cut(word, head, tail, "...(" + std::to_string(word.size() - head - tail) + " characters left out)...");
+    else
+      out.append(word);
+    if (end < s.size())
+      out += ' ';
+    i = end + 1;
+  }
+  // A message still too long keeps its start (the file and key) and its
+  // end (what was expected).
+  if (out.size() > most)
+    out = cut(out, 1400, 400, " ...(" + std::to_string(out.size() - 1800) + " characters left out)... ");
+  return out;
+}
+
 std::string trimmed(std::string_view s)
 {
   const auto b = s.find_first_not_of(" \t\r\n");

@@ -33,6 +33,12 @@ std::string format_number(double v, int significant = 12);
 /// `s` without blanks, tabs and line ends at either end.
 std::string trimmed(std::string_view s);
 
+/// `s` short enough to read: a word over 160 characters keeps its first
+/// 100 and last 40 with the count left out between, and a whole text over
+/// 2000 characters its first 1400 and last 400 (a one-line error that
+/// echoes a 100 kB value names it, and still ends with what was expected).
+std::string readable_length(std::string_view s);
+
 /// `s` on one line, for text from elsewhere written into a line of a file or
 /// a message: control characters (below 0x20, and DEL) become `replacement`.
 std::string one_line(std::string_view s, char replacement = ' ');

@@ -86,6 +86,32 @@ TEST_CASE("UTF-8 is told from other encodings, and outputs replace what is not U
   CHECK(demvv::json_text(doc) == "{\"deck_file\":\"runs/caract\xef\xbf\xbdristique.prm\"}");
 }
 
+TEST_CASE("an error that echoes a huge value stays readable and keeps what was expected", "[inputs]")
+{
+  const std::string word(100000, 'a'), tail = "': expected a file name";
+  const std::string message = "deck.prm:3: key 'particles/file' has value '" + word + tail;
+  const std::string shown = demvv::readable_length(message);
+  CHECK(shown.size() < 400);
+  CHECK(shown.rfind("deck.prm:3: key 'particles/file' has value '", 0) == 0);
+  CHECK(shown.find("(99863 characters left out)") != std::string::npos);
+  CHECK(shown.size() >= tail.size());
+  CHECK(shown.compare(shown.size() - tail.size(), tail.size(), tail) == 0);
+  // Short messages pass unchanged; a cut never splits a UTF-8 character.
+  CHECK(demvv::readable_length("key 'a' has value 'b': expected c") == "key 'a' has value 'b': expected c");
+  std::string euros;
+  for (int k = 0; k < 100; ++k)
+    euros += "\xe2\x82\xac"; // 300 bytes, 3 per character
+  CHECK(demvv::valid_utf8(demvv::readable_length(euros)));
+  // Many short words: the whole is kept to its first 1400 and last 400.
+  std::string many;
+  for (int k = 0; k < 2000; ++k)
+    many += "word ";
+  many += "expected this";
+  const std::string clipped = demvv::readable_length(many);
+  CHECK(clipped.size() < 1900);
+  CHECK(clipped.compare(clipped.size() - 13, 13, "expected this") == 0);
+}
+
 TEST_CASE("a deck's text must be UTF-8 and name one kind", "[inputs][deck]")
 {
   const std::string latin1 = temp_path("latin1.prm");
