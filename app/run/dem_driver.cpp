@@ -450,6 +450,9 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   const std::string warning = cadence.resolution().warning();
   if (protocol.resolves_contact_dynamics() && !warning.empty() && dir)
     std::cerr << "demvv: warning: " << warning << "\n";
+  if (dir && summary.contains("warnings"))
+    for (const auto &w : summary["warnings"])
+      std::cerr << "demvv: warning: " << w.get<std::string>() << "\n";
   summary["status"] = status.to_json();
   summary["status"]["threads"] = governor.to_json();
   if (dir && stopped_early && options.resumable_alone)

@@ -27,6 +27,9 @@
 //     check_energy_ledger) stops the run as a fault like any other, and so
 //     does a contact that overlaps by more than half a radius
 //     (check_contact_overlaps);
+//   - warnings: each entry of the summary's "warnings" (a protocol's own,
+//     e.g. a uniaxial test that was not quasi-static) is printed as a
+//     "demvv: warning:" line when the run ends;
 //   - interruption: SIGINT or SIGTERM end the run at the end of the current
 //     step; every output is flushed, summary.json says "interrupted" and a
 //     checkpoint is written (exit code 130 or 143);

@@ -29,6 +29,15 @@ DEMVV_CACHE="$out/cache" "$demvv" run "$data/../../cases/t61_damage/case.prm" --
 [ "$(wc -l < "$out/err")" -eq 1 ] || fail "--quiet must leave one line on stderr, not $(wc -l < "$out/err")"
 grep -q "^demvv: done" "$out/err" || fail "the line --quiet leaves is the final one"
 
+# A test meant to be quasi-static that is not (a platen at 300 m/s crushes
+# the lattice in four steps) ends with exit 0 and a warning naming the
+# inertial number, no longer silently.
+"$demvv" run "$data/bad/uniaxial_lattice.prm" --out "$out/fast" --threads 1 --quiet \
+  --set "loading/platen speed=300" --set "loading/final strain=0.1" 2> "$out/err" || fail "a fast platen still runs"
+grep -q "^demvv: warning: not quasi-static: the inertial number reached" "$out/err" ||
+  fail "a test far from quasi-static must say so"
+grep -q '"not quasi-static' "$out/fast/summary.json" || fail "the warning is in summary.json too"
+
 # A thread count beyond the machine is clamped to its cores (not an abort
 # in libgomp, not a run thousands of times slower).
 "$demvv" run "$data/../../cases/v01_linear_impact/case.prm" --out "$out/threads" --threads 1024 --quiet 2> "$out/err" ||
