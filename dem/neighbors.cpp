@@ -145,17 +145,17 @@ void NeighborList::rebuild(const ParticleStore &particles)
   flush();
 }
 
-std::optional<Pair> first_deep_overlap(const ParticleStore &particles, double fraction)
+std::optional<DeepOverlap> first_deep_overlap(const ParticleStore &particles, double fraction)
 {
   std::vector<Index> cell_start, cell_members, cell_of, cell_fill;
-  std::optional<Pair> found;
+  std::optional<DeepOverlap> found;
   visit_cell_neighbours(particles, 0.0, {cell_start, cell_members, cell_of, cell_fill},
                         [&](Index i, Index j)
                         {
                           const double overlap = particles.radius[i] + particles.radius[j] -
                                                  (particles.position[j] - particles.position[i]).norm();
                           if (overlap > fraction * std::min(particles.radius[i], particles.radius[j]))
-                            found = Pair(i, j);
+                            found = DeepOverlap{Pair(i, j), overlap};
                           return !found;
                         });
   return found;

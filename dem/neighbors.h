@@ -57,10 +57,15 @@ private:
 };
 
 /// The first pair (i, j), i < j, whose overlap R_i + R_j - |x_i - x_j|
-/// exceeds `fraction` of the smaller radius, or none.  It stops at the first
+/// exceeds `fraction` of the smaller radius, with that overlap, or none.  It stops at the first
 /// such pair, so balls piled on one point are found in the time of one cell
 /// build (a full candidate list of N coincident balls has N^2/2 pairs).
-std::optional<Pair> first_deep_overlap(const ParticleStore &particles, double fraction);
+struct DeepOverlap
+{
+  Pair pair;
+  double overlap = 0; ///< m
+};
+std::optional<DeepOverlap> first_deep_overlap(const ParticleStore &particles, double fraction);
 
 /// All pairs i < j with |x_i - x_j| < R_i + R_j + skin, sorted.  O(N^2).
 std::vector<Pair> brute_force_pairs(const ParticleStore &particles, double skin);

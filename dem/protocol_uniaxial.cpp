@@ -8,7 +8,8 @@ namespace dem
 {
 UniaxialCompression::UniaxialCompression(const Simulation &sim, WallIndex bottom, WallIndex top, double area,
                                          const UniaxialSettings &settings)
-  : bottom_(bottom), top_(top), area_(area), height0_(0), speed_(0), start_time_(sim.time()), settings_(settings)
+  : bottom_(bottom), top_(top), area_(area), height0_(0), speed_(0), start_time_(sim.time()),
+    largest_radius_(sim.particles().max_radius()), settings_(settings)
 {
   height0_ = separation(sim);
   speed_ = settings.platen_speed > 0 ? settings.platen_speed : settings.strain_rate * height0_;
@@ -71,12 +72,12 @@ void UniaxialCompression::drive(Simulation &sim)
   // from here on means anything.  (A ball still between them overlaps a
   // platen by half its radius before that: Simulation::
   // check_contact_overlaps names it first.)
-  const double gap = separation(sim), radius = sim.particles().max_radius();
-  if (gap < radius)
+  const double gap = separation(sim);
+  if (gap < largest_radius_)
   {
     std::ostringstream what;
     what << "the sample collapsed: the platens are " << gap << " m apart (axial strain " << axial_strain(sim)
-         << "), less than the largest ball radius " << radius
+         << "), less than the largest ball radius " << largest_radius_
          << " m, with the balls pushed out from between them; the load exceeded what the sample can carry";
     throw NumericalFault(sim.steps(), sim.time(), -1, what.str());
   }

@@ -79,6 +79,7 @@ private:
 
   WallIndex bottom_, top_;
   double area_, height0_, speed_, start_time_;
+  double largest_radius_; ///< m, the gap below which the sample has collapsed (radii are fixed in a test)
   double servo_integral_ = 0;
   UniaxialSettings settings_;
 };

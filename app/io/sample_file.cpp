@@ -656,13 +656,12 @@ void check_test_cell(const SampleFile &sample, const std::string &path)
                    format_number(radial) + " m from it)");
     }
   }
-  if (const std::optional<dem::Pair> deep = dem::first_deep_overlap(balls, 0.5))
+  if (const std::optional<dem::DeepOverlap> deep = dem::first_deep_overlap(balls, 0.5))
   {
-    const auto [i, j] = *deep;
-    const double overlap = balls.radius[i] + balls.radius[j] - (balls.position[j] - balls.position[i]).norm();
+    const auto [i, j] = deep->pair;
     fail_key(path, row(j), where(j) + " m",
              "expected balls that overlap by at most half the smaller radius (it overlaps " + row(i) + " by " +
-               format_number(overlap) + " m)");
+               format_number(deep->overlap) + " m)");
   }
 }
 } // namespace demvv

@@ -122,14 +122,13 @@ dem::Index parse_index(const Deck &deck, const std::string &key, const std::stri
 /// Deliberately pre-compressed pairs (a fraction of a percent) pass.
 void check_overlaps(const CsvTable &t, const dem::ParticleStore &p)
 {
-  const std::optional<dem::Pair> deep = dem::first_deep_overlap(p, 0.5);
+  const std::optional<dem::DeepOverlap> deep = dem::first_deep_overlap(p, 0.5);
   if (!deep)
     return;
-  const auto [i, j] = *deep;
-  const double overlap = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+  const auto [i, j] = deep->pair;
   std::ostringstream what;
   what << "particle " << j << " overlaps particle " << i << " (line " << t.line(static_cast<std::size_t>(i)) << ") by "
-       << overlap << " m at the start: expected balls that overlap by at most half the smaller "
+       << deep->overlap << " m at the start: expected balls that overlap by at most half the smaller "
        << "radius (" << 0.5 * std::min(p.radius[i], p.radius[j]) << " m)";
   t.fail(static_cast<std::size_t>(j), "x_m", what.str());
 }

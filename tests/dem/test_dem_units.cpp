@@ -142,13 +142,13 @@ TEST_CASE("the cell search finds the brute-force pairs and the first deep overla
         break;
       }
     }
-    const std::optional<dem::Pair> found = dem::first_deep_overlap(p, fraction);
+    const std::optional<dem::DeepOverlap> found = dem::first_deep_overlap(p, fraction);
     CHECK(found.has_value() == expected.has_value());
     if (found && expected)
     {
       // The cell order visits i ascending; for one i, its partners in cell order.
-      CHECK(found->first == expected->first);
-      const auto [i, j] = *found;
+      CHECK(found->pair.first == expected->first);
+      const auto [i, j] = found->pair;
       CHECK(p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm() >
             fraction * std::min(p.radius[i], p.radius[j]));
     }
@@ -163,7 +163,8 @@ TEST_CASE("the cell search finds the brute-force pairs and the first deep overla
     b.radius = 1e-3;
     pile.add(b);
   }
-  CHECK(dem::first_deep_overlap(pile, 0.5) == std::optional<dem::Pair>(dem::Pair(0, 1)));
+  const std::optional<dem::DeepOverlap> piled = dem::first_deep_overlap(pile, 0.5);
+  CHECK((piled && piled->pair == dem::Pair(0, 1)));
 }
 
 TEST_CASE("a test stops when its platens close on no sample or a contact overlaps beyond half a radius",

@@ -287,9 +287,10 @@ constexpr int step_study_seeds = ensemble_seeds;
 struct StepQuantity
 {
   std::string name;
-  TimeStepAnalysis analysis;   ///< over the levels and seeds
-  double change_tolerance = 0; ///< on the relative mean paired change between levels
-  double bound_tolerance = 0;  ///< on U_num at 0.8, relative to the mean there
+  std::vector<std::vector<double>> values; ///< [level][seed] [Pa]
+  TimeStepAnalysis analysis;               ///< of `values`
+  double change_tolerance = 0;             ///< on the relative mean paired change between levels
+  double bound_tolerance = 0;              ///< on U_num at 0.8, relative to the mean there
   ToleranceClass tolerance_class = ToleranceClass::C;
   std::string change_reason, bound_reason;
 };
@@ -351,13 +352,15 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
   double step_stress = 0; // the initial modulus times one step's strain at 0.8, mean over the seeds
   for (const MemberResult &m : level[0])
     step_stress += m.modulus * m.series.strain_per_step / double(seeds);
-  const TimeStepAnalysis fixed_analysis = analyse_time_step(safeties, per_level(stresses_at_fixed));
+  const std::vector<std::vector<double>> peak_values = per_level(peaks), fixed_values = per_level(stresses_at_fixed);
+  const TimeStepAnalysis fixed_analysis = analyse_time_step(safeties, fixed_values);
   const std::string u_num_how = "U_num: the paired bound |mean| + 95 % half-width on the change from 0.8 to the "
                                 "finest level, plus the finest level's own error bounded as for first order "
                                 "(app/studies/time_step_study.h, as demvv time-step computes it)";
 
   StepQuantity peak{"peak stress",
-                    analyse_time_step(safeties, per_level(peaks)),
+                    peak_values,
+                    analyse_time_step(safeties, peak_values),
                     0.5 * scatter.sd,
                     0.5 * scatter.single_95,
                     ToleranceClass::D,
@@ -375,6 +378,7 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
   const std::string at = "stress at " + num(100 * s.fixed_strain) + " % strain";
   const double one_step = step_stress / std::abs(fixed_analysis.level.front().mean);
   StepQuantity fixed{at,
+                     fixed_values,
                      fixed_analysis,
                      one_step,
                      one_step,
@@ -393,10 +397,10 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
     for (std::size_t k = 0; k < safeties.size(); ++k)
     {
       means.push_back(q.analysis.level[k].mean);
-      for (const MemberResult &m : level[k])
+      for (const double v : q.values[k])
       {
         every_h.push_back(safeties[k]);
-        every_value.push_back(q.name == "peak stress" ? m.peak : m.series.stress_at_fixed);
+        every_value.push_back(v);
       }
     }
     Curve c = curve(q.name + ", mean over seeds", safeties, means, CurveStyle::markers_and_line);
