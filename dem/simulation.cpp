@@ -430,7 +430,12 @@ void Simulation::check_contact_overlaps(double fraction) const
   {
     const double smaller = std::min(P.radius[c.first], P.radius[c.second]);
     if (c.state.touching() && c.state.overlap > fraction * smaller)
-      refuse(c.first, c.state.overlap, smaller, "particle " + std::to_string(c.second));
+    {
+      std::ostringstream ball;
+      ball << "the ball at (" << P.position[c.second].x() << ", " << P.position[c.second].y() << ", "
+           << P.position[c.second].z() << ") m";
+      refuse(c.first, c.state.overlap, smaller, ball.str());
+    }
   }
   for (WallIndex w = 0; w < walls_.size(); ++w)
     for (Index p = 0; p < P.size(); ++p)

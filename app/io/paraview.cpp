@@ -104,7 +104,7 @@ void ParaviewWriter::write_frame(const dem::Simulation &sim, double time)
 
   std::vector<double> id(p.size());
   for (dem::Index k = 0; k < p.size(); ++k)
-    id[k] = k;
+    id[k] = ids_.empty() ? k : ids_[k];
   std::ostringstream pd;
   pd.precision(10);
   array(pd, "radius", 1, p.radius);

@@ -54,8 +54,12 @@ struct SceneSpec
   std::vector<ListedBond> bond_list; ///< install = list
   double duration = 0;               ///< s
   DemOutputSpec output;              ///< clock: simulated time [s]
-  std::vector<dem::Index> tracked;
-  std::vector<dem::Pair> tracked_pairs;
+  /// Balls, bonds and tracked balls are numbered along a Morton curve
+  /// (dem/spatial_order.h); file_row[k] is ball k's row in the particle
+  /// file, the number every output and message gives it.
+  std::vector<dem::Index> file_row;
+  std::vector<dem::Index> tracked;      ///< in the deck's order
+  std::vector<dem::Pair> tracked_pairs; ///< (first, second) by the run's numbering
 };
 
 SceneSpec parse_scene(const Deck &deck);

@@ -437,6 +437,8 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   catch (const dem::NumericalFault &f)
   {
     record_fault(status, f);
+    if (status.particle >= 0)
+      status.particle = protocol.ball_id(status.particle);
   }
   progress.finish();
   const bool stopped_early = status.interrupted_by || status.paused;

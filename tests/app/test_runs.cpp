@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -68,6 +69,116 @@ TEST_CASE("same deck and seed give identical series whatever the thread count", 
     CHECK(a.series.row(r) == c.series.row(r)); // contacts and balls are summed in a fixed order
   }
   omp_set_num_threads(omp_get_num_procs());
+}
+
+TEST_CASE("a scene's balls in any file order run alike, to the last bit, on any thread count", "[run][order]")
+{
+  // 343 balls on a jittered lattice in a box of six planes, pressed by the
+  // lid: once in lattice order, once shuffled.  The run numbers the balls
+  // along a Morton curve (dem/spatial_order.h), a canonical order, so every
+  // row is the same bit for bit; tracked balls and pairs are named by file
+  // row in the deck and in the outputs, the pair's shear force on the
+  // ball of the larger row in both.
+  const fs::path dir = demvv_tests::test_folder("test_ball_order");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const double r = 0.5e-3, gap = 1.02 * 2 * r;
+  std::vector<std::array<double, 3>> balls;
+  std::uint64_t state = 12345;
+  const auto jitter = [&state]()
+  {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 0.02e-3;
+  };
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j)
+      for (int k = 0; k < 7; ++k)
+        balls.push_back({{(i + 0.5) * gap + jitter(), (j + 0.5) * gap + jitter(), (k + 0.5) * gap + jitter()}});
+  std::vector<std::size_t> shuffled(balls.size());
+  for (std::size_t k = 0; k < shuffled.size(); ++k)
+    shuffled[k] = (k * 97) % balls.size(); // 97 and 343 are coprime: a permutation
+  const std::size_t a = 10, b = 11;        // lattice rows of two neighbours (same i, j; k and k + 1)
+  std::size_t row_a = 0, row_b = 0;
+  for (std::size_t k = 0; k < shuffled.size(); ++k)
+  {
+    row_a = shuffled[k] == a ? k : row_a;
+    row_b = shuffled[k] == b ? k : row_b;
+  }
+  const double side = 7 * gap;
+  const auto write_scene =
+    [&](const std::string &name, const std::vector<std::size_t> &rows, std::size_t ta, std::size_t tb)
+  {
+    std::ofstream csv(dir / (name + ".csv"));
+    csv << "x_m,y_m,z_m,radius_m\n";
+    csv.precision(17);
+    for (std::size_t k : rows)
+      csv << balls[k][0] << "," << balls[k][1] << "," << balls[k][2] << "," << r << "\n";
+    std::ofstream prm(dir / (name + ".prm"));
+    prm.precision(17);
+    prm << "set kind = scene\nsubsection particles\n  set file = " << name << ".csv\nend\n"
+        << "subsection balls\n  set friction = 0.5\nend\nsubsection walls\n";
+    const char *names[6] = {"floor", "lid", "west", "east", "south", "north"};
+    for (int w = 0; w < 6; ++w)
+    {
+      const int axis = 2 - w / 2; // floor and lid normal to z
+      const bool high = w % 2 == 1;
+      std::array<double, 3> point{}, normal{};
+      point[axis] = high ? side : 0;
+      normal[axis] = high ? -1 : 1;
+      prm << "  subsection plane " << names[w] << "\n    set point = " << point[0] << ", " << point[1] << ", "
+          << point[2] << "\n    set normal = " << normal[0] << ", " << normal[1] << ", " << normal[2] << "\n";
+      if (w == 1)
+        prm << "    set velocity = 0, 0, -0.5\n";
+      prm << "  end\n";
+    }
+    prm << "end\nsubsection motion\n  set local damping = 0.7\nend\n"
+        << "subsection run\n  set duration = 4e-4\nend\nsubsection output\n  set interval = 2e-5\n"
+        << "  set track particles = " << ta << "\n  set track pairs = " << ta << "-" << tb << "\nend\n";
+    csv.close();
+    prm.close();
+    return demvv::Deck::from_file(demvv::deck_kinds(), (dir / (name + ".prm")).string());
+  };
+  std::vector<std::size_t> lattice(balls.size());
+  for (std::size_t k = 0; k < lattice.size(); ++k)
+    lattice[k] = k;
+  const auto in_order = demvv::run_scene(write_scene("lattice", lattice, a, b), {"", 1, false});
+  const auto one = demvv::run_scene(write_scene("shuffled", shuffled, row_a, row_b), {"", 1, false});
+  const auto two = demvv::run_scene(write_scene("shuffled", shuffled, row_a, row_b), {"", 2, false});
+  omp_set_num_threads(omp_get_num_procs());
+  REQUIRE(in_order.series.rows() > 10);
+  REQUIRE(in_order.series.rows() == one.series.rows());
+  REQUIRE(in_order.series.rows() == two.series.rows());
+  CHECK(in_order.series.column("contacts").back() > 500); // the lid pressed the balls together
+  for (std::size_t k = 0; k < in_order.series.rows(); ++k)
+  {
+    CHECK(in_order.series.row(k) == one.series.row(k));
+    CHECK(one.series.row(k) == two.series.row(k));
+  }
+  REQUIRE(in_order.particles.rows() == one.particles.rows());
+  REQUIRE(in_order.contacts.rows() == one.contacts.rows());
+  for (std::size_t k = 0; k < in_order.particles.rows(); ++k)
+  {
+    std::vector<double> x = in_order.particles.row(k), y = one.particles.row(k);
+    CHECK(x[1] == double(a));
+    CHECK(y[1] == double(row_a));
+    x[1] = y[1] = 0;
+    CHECK(x == y);
+  }
+  // The pair is (a, b) by lattice rows and (row_a, row_b) shuffled; with
+  // the smaller row first both times the force is on the same ball only
+  // when the two orders agree on which row is smaller.
+  const double flip = (row_a < row_b) == (a < b) ? 1.0 : -1.0;
+  bool touched = false;
+  for (std::size_t k = 0; k < in_order.contacts.rows(); ++k)
+  {
+    const std::vector<double> x = in_order.contacts.row(k), y = one.contacts.row(k);
+    CHECK(y[1] == double(std::min(row_a, row_b)));
+    CHECK(y[2] == double(std::max(row_a, row_b)));
+    for (std::size_t c = 3; c < x.size(); ++c)
+      CHECK(y[c] == (c >= 6 && c <= 8 ? flip * x[c] : x[c]));
+    touched = touched || x.back() == 1.0;
+  }
+  CHECK(touched);
 }
 
 TEST_CASE("uniaxial compression gives positive axial stress and strain and negative radial strain", "[run]")
