@@ -3,7 +3,6 @@
 #include "app/decks/csv_input.h"
 #include "app/decks/deck_sections.h"
 #include "app/io/input.h"
-#include "app/io/paraview.h"
 
 #include "dem/measure.h"
 #include "dem/neighbors.h"
@@ -447,7 +446,6 @@ public:
   }
 
   bool resolves_contact_dynamics() const override { return true; }
-  dem::Index ball_id(dem::Index ball) const override { return spec_.file_row[ball]; }
 
   nlohmann::json summary(const dem::Simulation &sim, const RunStatus &status, const ContactResolution &resolution,
                          const RunDirectory * /*dir*/) const override
@@ -550,8 +548,7 @@ SceneResult run_scene(const SceneSpec &spec, const RunOptions &options)
   const std::string convention = "demvv scene '" + spec.deck.name + "': SI units, compression positive";
   RunFiles files(options, spec.deck, threads, static_cast<long long>(spec.bonds.settings.seed), convention,
                  spec.output.paraview);
-  if (ParaviewWriter *frames = files.paraview())
-    frames->set_ball_ids(spec.file_row);
+  files.set_ball_ids(spec.file_row);
   SceneProtocol protocol(spec, result);
   result.status = run_dem(sim, protocol, files, spec.output, options).status;
   return result;

@@ -438,7 +438,7 @@ DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files,
   {
     record_fault(status, f);
     if (status.particle >= 0)
-      status.particle = protocol.ball_id(status.particle);
+      status.particle = files.ball_id(status.particle);
   }
   progress.finish();
   const bool stopped_early = status.interrupted_by || status.paused;

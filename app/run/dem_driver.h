@@ -151,9 +151,6 @@ public:
   /// True when the test is about contact dynamics (impacts, waves): the
   /// driver then warns when the step resolves contact periods poorly.
   virtual bool resolves_contact_dynamics() const { return false; }
-  /// How the user names ball `ball` (a fault's particle): its row in the
-  /// user's file where the run renumbered the balls, else its index.
-  virtual dem::Index ball_id(dem::Index ball) const { return ball; }
   /// The protocol's own state that the simulation does not hold (a servo's
   /// integral, a running maximum), kept bit for bit by checkpoints.
   virtual std::vector<double> checkpoint_values() const { return {}; }

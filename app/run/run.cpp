@@ -147,7 +147,11 @@ DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
                     what + "'s files (--out)");
   make_directories(dir);
   const std::string path = dir + "/" + lock_file;
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  path_ = path;
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  created_ = fd_ >= 0;
+  if (fd_ < 0 && errno == EEXIST)
+    fd_ = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
   if (fd_ < 0)
     throw DeckError(what + " directory '" + dir + "': cannot open its lock file " + lock_file + " (" +
                     std::strerror(errno) + "): expected a directory demvv may write, holding no link of that name");
@@ -171,8 +175,19 @@ DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
 
 DirectoryLock::~DirectoryLock()
 {
-  if (fd_ >= 0)
-    ::close(fd_); // releases the lock; the file stays (removing it would race a waiting process)
+  if (fd_ < 0)
+    return;
+  // A lock file this process made in a directory that never became demvv's
+  // (no marker: the directory was refused) goes, so that a refusal leaves
+  // a foreign folder as it found it.  Otherwise the file stays: removing it
+  // would race a process waiting on it.
+  struct stat st
+  {
+  };
+  const std::string dir = path_.substr(0, path_.size() - std::string(lock_file).size() - 1);
+  if (created_ && ::lstat((dir + "/" + ownership_marker).c_str(), &st) != 0)
+    ::unlink(path_.c_str());
+  ::close(fd_); // releases the lock
 }
 
 bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding)
@@ -340,6 +355,13 @@ RunFiles::RunFiles(const RunOptions &options, const DeckRecord &deck, int thread
 
 RunFiles::~RunFiles() = default;
 
+void RunFiles::set_ball_ids(std::vector<dem::Index> ids)
+{
+  ids_ = std::move(ids);
+  if (paraview_)
+    paraview_->set_ball_ids(ids_);
+}
+
 void RunFiles::drain_breaks(dem::Simulation &sim)
 {
   const std::vector<dem::BondBreak> breaks = sim.take_breaks();
@@ -347,7 +369,10 @@ void RunFiles::drain_breaks(dem::Simulation &sim)
     return;
   if (breaks_)
     for (const dem::BondBreak &b : breaks)
-      breaks_->write({b.time, double(b.first), double(b.second), double(static_cast<int>(b.mode))});
+    {
+      const dem::Index a = ball_id(b.first), c = ball_id(b.second);
+      breaks_->write({b.time, double(std::min(a, c)), double(std::max(a, c)), double(static_cast<int>(b.mode))});
+    }
   if (paraview_)
     paraview_->add_breaks(sim, breaks);
 }

@@ -123,8 +123,12 @@ public:
   RunDirectory *directory() { return dir_.get(); }
   const RunDirectory *directory() const { return dir_.get(); }
   ParaviewWriter *paraview() { return paraview_.get(); }
-  /// Takes the simulation's new bond breaks into bond_breaks.csv and the
-  /// ParaView break log.
+  /// How the files name ball k: ids[k], its row in the user's particle file
+  /// where the run renumbered the balls (dem/spatial_order.h); by default k.
+  void set_ball_ids(std::vector<dem::Index> ids);
+  dem::Index ball_id(dem::Index ball) const { return ids_.empty() ? ball : ids_[ball]; }
+  /// Takes the simulation's new bond breaks into bond_breaks.csv (first <
+  /// second, by ball_id) and the ParaView break log.
   void drain_breaks(dem::Simulation &sim);
 
   /// What a checkpoint records of these files (bond_breaks.csv length,
@@ -136,6 +140,7 @@ private:
   std::unique_ptr<RunDirectory> dir_;
   std::unique_ptr<CsvSeries> breaks_;
   std::unique_ptr<ParaviewWriter> paraview_;
+  std::vector<dem::Index> ids_;
 };
 
 // Ownership.  A directory demvv made holds the marker file `.demvv` (JSON:
@@ -177,6 +182,8 @@ public:
 
 private:
   int fd_ = -1;
+  std::string path_;     ///< the lock file
+  bool created_ = false; ///< this process made the lock file
 };
 
 /// Makes `dir` ready for a new run, before anything is written into it: a

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <omp.h>
+#include <sstream>
 #include <thread>
 
 namespace
@@ -179,6 +180,62 @@ TEST_CASE("a scene's balls in any file order run alike, to the last bit, on any 
     touched = touched || x.back() == 1.0;
   }
   CHECK(touched);
+}
+
+TEST_CASE("a scene's bond breaks and ParaView ids name balls by their row in the particle file", "[run][order]")
+{
+  // A bonded pair pulled apart, a third ball far off; listed as (far, a, b)
+  // and as (a, far, b): the break is between rows 1 and 2, then 0 and 2.
+  const fs::path dir = demvv_tests::test_folder("test_break_rows");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string far = "0.02,0,0,0.001,0", a = "0,0,0,0.001,-5", b = "0.002,0,0,0.001,5";
+  const auto breaks_of = [&](const std::string &name, const std::vector<std::string> &rows)
+  {
+    {
+      std::ofstream csv(dir / (name + ".csv"));
+      csv << "x_m,y_m,z_m,radius_m,vx_mps\n";
+      for (const std::string &r : rows)
+        csv << r << "\n";
+      std::ofstream prm(dir / (name + ".prm"));
+      prm << "set kind = scene\nsubsection particles\n  set file = " << name << ".csv\nend\n"
+          << "subsection bonds\n  set install = touching\n  set normal strength = 1\n"
+          << "  set shear strength = 1\nend\nsubsection motion\n  set local damping = 0\nend\n"
+          << "subsection run\n  set duration = 2e-4\nend\nsubsection output\n  set paraview = true\n"
+          << "  set paraview interval = 1e-4\nend\n";
+    }
+    const fs::path out = dir / (name + "_run");
+    demvv::run_scene(demvv::Deck::from_file(demvv::deck_kinds(), (dir / (name + ".prm")).string()),
+                     {out.string(), 1, false});
+    std::ifstream log(out / "bond_breaks.csv");
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(log, line);)
+      if (!line.empty() && line[0] != '#')
+        lines.push_back(line.substr(line.find(',') + 1));
+    const std::string frame = demvv::read_file((out / "paraview" / "particles_00000.vtp").string());
+    return std::make_pair(lines, frame);
+  };
+  const auto [first, first_frame] = breaks_of("far_first", {far, a, b});
+  const auto [middle, middle_frame] = breaks_of("far_middle", {a, far, b});
+  REQUIRE(first.size() == 2); // the header and one break
+  REQUIRE(middle.size() == 2);
+  CHECK(first[1] == "1,2,1");
+  CHECK(middle[1] == "0,2,1");
+  // The frames list the balls in the run's order, the same for both files
+  // (a, b, then the far ball, along the curve); their ids are the rows of
+  // each file.
+  const auto ids = [](const std::string &frame)
+  {
+    const auto at = frame.find("Name=\"id\"");
+    const auto open = frame.find('>', at) + 1;
+    std::istringstream values(frame.substr(open, frame.find('<', open) - open));
+    std::vector<double> out;
+    for (double v; values >> v;)
+      out.push_back(v);
+    return out;
+  };
+  CHECK(ids(first_frame) == std::vector<double>{1, 2, 0});
+  CHECK(ids(middle_frame) == std::vector<double>{0, 2, 1});
 }
 
 TEST_CASE("uniaxial compression gives positive axial stress and strain and negative radial strain", "[run]")

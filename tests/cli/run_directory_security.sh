@@ -111,6 +111,12 @@ echo notes > "$work/mine/notes.txt"
 one_line "$work/err" "--replace of a working folder"
 [ -f "$work/mine/deck.prm" ] && [ -f "$work/mine/balls.csv" ] && [ -f "$work/mine/notes.txt" ] ||
   fail "--replace of a working folder removed files: $(ls "$work/mine")"
+[ ! -e "$work/mine/.demvv.lock" ] || fail "a refused run left its lock file in a foreign folder"
+# Through a link too: a refused --out leaves the folder it points at as it was.
+mkdir "$work/victim" && echo notes > "$work/victim/notes.txt" && ln -s "$work/victim" "$work/link"
+run "$impact" --out "$work/link" 2>"$work/err"
+[ $? -eq 2 ] || fail "a run into a linked non-empty folder was not refused: $(cat "$work/err")"
+[ "$(ls -A "$work/victim")" = notes.txt ] || fail "a refused run wrote into a linked folder: $(ls -A "$work/victim")"
 echo notes > "$work/r/notes.txt"
 run "$impact" --out "$work/r" --replace 2>/dev/null || fail "--replace of a run directory failed"
 [ -f "$work/r/notes.txt" ] || fail "--replace removed a file no run writes"
