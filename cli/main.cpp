@@ -31,6 +31,7 @@
 #include <omp.h>
 
 #include <csignal>
+#include <cstdio>
 #include <iostream>
 #include <new>
 #include <stdexcept>
@@ -45,6 +46,25 @@ int refuse(const std::string &why, int code)
   std::cerr << "demvv: " + demvv::readable_length(why) + "\n";
   return code;
 }
+
+/// `code`, or exit 4 when standard output could not be written (a full
+/// disk, /dev/full): a report or catalogue that was not written is no
+/// success.
+int finish(int code)
+{
+  std::cout.flush();
+  if (std::fflush(stdout) == 0 && std::cout && !std::ferror(stdout))
+    return code;
+  return refuse("standard output cannot be written (a full disk or device, or a closed pipe): what this command "
+                "printed is incomplete",
+                code == 0 ? 4 : code);
+}
+
+/// A directory option (--out) must name one: '' would fall back to a default.
+const CLI::Validator
+  directory_name([](std::string &value)
+                 { return value.empty() ? std::string("expected a directory name, found ''") : std::string(); },
+                 "DIR");
 } // namespace
 
 int main(int argc, char **argv)
@@ -75,7 +95,8 @@ int main(int argc, char **argv)
   std::string resume_dir;
   auto *run = app.add_subcommand("run", "Run a deck and write its run directory");
   run->add_option("DECK", deck_path, "Deck file (.prm or .json)")->required();
-  run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>): a new or empty directory");
+  run->add_option("--out", out_dir, "Run directory (default runs/<deck-name>): a new or empty directory")
+    ->check(directory_name);
   bool replace = false;
   run->add_flag("--replace", replace,
                 "Replace the run in a non-empty run directory whole (its old files removed once the deck is read "
@@ -113,7 +134,8 @@ int main(int argc, char **argv)
                  "deck, the packing); default: the deck's own seeds")
     ->check(CLI::Range(1, 100000));
   sweep_cmd->add_option("--out", sweep.settings.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")
-    ->required();
+    ->required()
+    ->check(directory_name);
   sweep_cmd->add_flag("--replace", sweep.settings.replace,
                       "Start the sweep in --out over (only a sweep directory is emptied)");
   sweep_cmd
@@ -144,7 +166,8 @@ int main(int argc, char **argv)
                             "Set a deck entry in every member: SECTION/KEY=VALUE (repeatable)");
   time_step_cmd
     ->add_option("--out", time_step.settings.out_dir, "Study directory: new, empty, or this study's (resumed)")
-    ->required();
+    ->required()
+    ->check(directory_name);
   time_step_cmd->add_flag("--replace", time_step.settings.replace, "Start the study in --out over");
   time_step_cmd->add_option("--threads", time_step.settings.threads, "OpenMP threads per member, at most")
     ->check(CLI::Range(1, 1024));
@@ -188,7 +211,8 @@ int main(int argc, char **argv)
   calibrate_cmd
     ->add_option("--out", calibration.settings.out_dir,
                  "Calibration directory: new, empty, or this calibration's (resumed)")
-    ->required();
+    ->required()
+    ->check(directory_name);
   calibrate_cmd->add_flag("--replace", calibration.settings.replace,
                           "Start the calibration in --out over (only a calibration directory is emptied)");
   calibrate_cmd
@@ -209,7 +233,7 @@ int main(int argc, char **argv)
   verify_cmd->add_flag("--quick", quick, "Short versions of the long checks (default)");
   verify_cmd->add_flag("--full", full, "Full versions of the long checks");
   verify_cmd->add_option("--only", only, "Run only checks whose id or title contains PATTERN");
-  verify_cmd->add_option("--out", out_dir, "Report directory (default runs/verify)");
+  verify_cmd->add_option("--out", out_dir, "Report directory (default runs/verify)")->check(directory_name);
   verify_cmd->add_option("--cases", cases_dir, "Case decks directory (default: the source tree's cases/)");
   verify_cmd
     ->add_option("--threads", threads,
@@ -249,11 +273,11 @@ int main(int argc, char **argv)
   }
   catch (const CLI::CallForHelp &e)
   {
-    return app.exit(e);
+    return finish(app.exit(e));
   }
   catch (const CLI::CallForAllHelp &e)
   {
-    return app.exit(e);
+    return finish(app.exit(e));
   }
   catch (const CLI::ParseError &e)
   {
@@ -277,43 +301,43 @@ int main(int argc, char **argv)
       options.resume = !resume_dir.empty();
       options.pause_after = pause_after;
       options.replace = replace;
-      return demvv::command_run(deck_path, overrides, options);
+      return finish(demvv::command_run(deck_path, overrides, options));
     }
     if (sweep_cmd->parsed())
     {
       sweep.settings.progress = !sweep_quiet;
       for (int i = 0; i < argc; ++i)
         sweep.settings.command_line += (i ? " " : "") + std::string(argv[i]);
-      return demvv::command_sweep(sweep);
+      return finish(demvv::command_sweep(sweep));
     }
     if (time_step_cmd->parsed())
     {
       time_step.settings.progress = !time_step_quiet;
       for (int i = 0; i < argc; ++i)
         time_step.settings.command_line += (i ? " " : "") + std::string(argv[i]);
-      return demvv::command_time_step(time_step);
+      return finish(demvv::command_time_step(time_step));
     }
     if (calibrate_cmd->parsed())
     {
       calibration.settings.progress = !calibrate_quiet;
       for (int i = 0; i < argc; ++i)
         calibration.settings.command_line += (i ? " " : "") + std::string(argv[i]);
-      return demvv::command_calibrate(calibration);
+      return finish(demvv::command_calibrate(calibration));
     }
     if (defaults->parsed())
-      return demvv::command_defaults(kind);
+      return finish(demvv::command_defaults(kind));
     if (bench_cmd->parsed())
-      return demvv::command_bench(bench);
+      return finish(demvv::command_bench(bench));
     if (verify_cmd->parsed())
     {
       if (quick && full)
         throw demvv::DeckError("--quick and --full exclude each other");
-      return demvv::command_verify(full, only, out_dir.empty() ? "runs/verify" : out_dir, cases_dir, threads);
+      return finish(demvv::command_verify(full, only, out_dir.empty() ? "runs/verify" : out_dir, cases_dir, threads));
     }
     if (plot_cmd->parsed())
-      return demvv::command_plot(plot_dir);
+      return finish(demvv::command_plot(plot_dir));
     if (catalogue_cmd->parsed())
-      return demvv::command_catalogue(catalogue_out);
+      return finish(demvv::command_catalogue(catalogue_out));
   }
   catch (const demvv::DeckError &e)
   {

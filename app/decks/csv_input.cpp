@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 
 namespace demvv
@@ -47,8 +48,9 @@ CsvTable CsvTable::read(const std::string &path, Values values)
     const auto c = cells(s);
     if (t.header_.empty())
     {
+      std::set<std::string> seen; // a set: a header of a million columns is refused in a second, not hours
       for (std::size_t k = 0; k < c.size(); ++k)
-        if (std::find(c.begin(), c.begin() + long(k), c[k]) != c.begin() + long(k))
+        if (!seen.insert(c[k]).second)
           throw DeckError(path + ":" + std::to_string(line) + ": column '" + escaped(c[k]) +
                           "' is named twice in the header: expected each column once (one of the two would be "
                           "ignored)");

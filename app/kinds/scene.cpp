@@ -12,7 +12,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace demvv
@@ -259,9 +261,14 @@ void check_walls_clear(const Deck &deck, const dem::ParticleStore &p, const dem:
     }
 }
 
-std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, dem::Index n)
+/// The bonds of a list file: each pair once, between balls that touch (a
+/// contact bond joins a contact, thesis §3.4; one across a gap would pull
+/// the balls together with the full stiffness of the gap).
+std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, const dem::ParticleStore &p)
 {
+  const dem::Index n = p.size();
   std::vector<ListedBond> out;
+  std::map<dem::Pair, std::size_t> listed; // pair -> row
   if (bonds.install != "list")
     return out;
   const CsvTable t = CsvTable::read(bonds.list_file);
@@ -277,6 +284,19 @@ std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, dem::Index n)
     ListedBond b;
     b.first = static_cast<dem::Index>(t.get(r, "first"));
     b.second = static_cast<dem::Index>(t.get(r, "second"));
+    const dem::Pair pair{std::min(b.first, b.second), std::max(b.first, b.second)};
+    if (const auto [at, added] = listed.emplace(pair, r); !added)
+      t.fail(r, "second",
+             "the pair is listed again (first at line " + std::to_string(t.line(at->second)) +
+               "): expected each bond once");
+    const double gap = (p.position[b.second] - p.position[b.first]).norm() - p.radius[b.first] - p.radius[b.second];
+    if (gap > 1e-9 * (p.radius[b.first] + p.radius[b.second]))
+    {
+      std::ostringstream what;
+      what << "balls " << b.first << " and " << b.second << " are " << gap
+           << " m apart: expected a bond between balls that touch";
+      t.fail(r, "second", what.str());
+    }
     b.normal_strength = t.get(r, "normal_strength_n", bonds.settings.normal_strength);
     b.shear_strength = t.get(r, "shear_strength_n", bonds.settings.shear_strength);
     if (!(b.normal_strength > 0))
@@ -504,15 +524,21 @@ SceneSpec parse_scene(const Deck &deck)
   spec.rate = RateSpec::parse(deck).scaling(0);
   spec.motion = parse_motion(deck);
   spec.bonds = BondSpec::parse(deck);
-  spec.bond_list = parse_bond_list(spec.bonds, spec.particles.size());
+  spec.bond_list = parse_bond_list(spec.bonds, spec.particles);
   spec.duration = deck.real("run/duration");
   spec.output.interval = deck.real("output/interval");
   spec.output.paraview = deck.flag("output/paraview");
   spec.output.paraview_interval = deck.real("output/paraview interval");
   spec.output.checkpoint_interval = deck.real("output/checkpoint interval");
   const dem::Index n = spec.particles.size();
+  std::set<dem::Index> tracked;
   for (const auto &item : items(deck.text("output/track particles")))
+  {
     spec.tracked.push_back(parse_index(deck, "output/track particles", item, n));
+    if (!tracked.insert(spec.tracked.back()).second)
+      deck.fail("output/track particles", "ball " + item + " is named twice: expected each ball once");
+  }
+  std::set<dem::Pair> pairs;
   for (const auto &item : items(deck.text("output/track pairs")))
   {
     const auto dash = item.find('-');
@@ -522,6 +548,8 @@ SceneSpec parse_scene(const Deck &deck)
     dem::Index j = parse_index(deck, "output/track pairs", item.substr(dash + 1), n);
     if (i == j)
       deck.fail("output/track pairs", "expected two different balls in '" + item + "'");
+    if (!pairs.insert({std::min(i, j), std::max(i, j)}).second)
+      deck.fail("output/track pairs", "the pair '" + item + "' is named twice: expected each pair once");
     spec.tracked_pairs.emplace_back(i, j);
   }
   number_along_curve(spec);

@@ -56,5 +56,11 @@ grep -q "note: this run needs at least .* hours" "$out/err" || fail "a run of da
 "$demvv" verify --only V05 --out "$out/verify" 2> /dev/null || fail "verify V05 must pass"
 [ -s "$out/verify/report.md" ] && [ -s "$out/verify/report.json" ] || fail "verify writes report.md and report.json"
 "$demvv" bench --particles 300 --steps 20 --repeat 1 | grep -q "particle-steps/s" || fail "bench prints its line"
+# Standard output that cannot be written is no success: exit 4 with one line.
+if [ -w /dev/full ]; then
+  "$demvv" catalogue > /dev/full 2> "$out/err"
+  [ $? -eq 4 ] && grep -q "standard output cannot be written" "$out/err" ||
+    fail "a catalogue written to a full device must exit 4: $(cat "$out/err")"
+fi
 rm -rf "$out"
 echo "cli exit codes: ok"
