@@ -19,6 +19,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 
 namespace demvv
@@ -103,6 +104,19 @@ void draw_run_figures(const std::string &run_dir, bool list_drawn)
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
 {
+  // A deck refuses a key set twice; so does the command line (the last
+  // --set would win unseen).
+  std::map<std::string, std::string> set_by;
+  for (const std::string &o : overrides)
+  {
+    const std::string key = o.substr(0, o.find('='));
+    const auto first = key.find_first_not_of(" \t");
+    const std::string name =
+      first == std::string::npos ? key : key.substr(first, key.find_last_not_of(" \t") + 1 - first);
+    if (const auto [at, added] = set_by.emplace(name, o); !added)
+      throw DeckError("--set '" + o + "': the key is set again (first by --set '" + at->second +
+                      "'): expected each key once");
+  }
   const Deck deck = Deck::from_file(deck_kinds(), deck_path, overrides);
   RunOptions o = options;
   if (o.out_dir.empty())
@@ -174,8 +188,7 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
     // The results are complete only if the run itself was not stopped
     // (a second signal may come while the figures of a stopped run are drawn).
     std::cerr << "demvv: " << signal_name(stopped_while_drawing) << " while drawing the figures: the run's results in "
-              << o.out_dir
-              << (status.exit_code() == 0 ? " are complete" : " are as the line above says")
+              << o.out_dir << (status.exit_code() == 0 ? " are complete" : " are as the line above says")
               << ", some figures may be missing; draw them with: demvv plot " << o.out_dir << "\n";
     return 128 + stopped_while_drawing;
   }
@@ -218,8 +231,8 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
                    int threads)
 {
   if (!cases_dir.empty() && !std::filesystem::is_directory(cases_dir))
-    throw DeckError("--cases '" + cases_dir + "': not a directory: expected the folder of the case decks (default: " +
-                    default_cases_dir() + ")");
+    throw DeckError("--cases '" + cases_dir +
+                    "': not a directory: expected the folder of the case decks (default: " + default_cases_dir() + ")");
   const int used = apply_threads({"", threads, false});
   CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads};
   const std::vector<CheckRecord> records = run_checks(ctx, only, true);
