@@ -14,6 +14,8 @@
 # work (contacts and top stress within 0.5 %).  LIGGGHTS is skipped when
 # `liggghts` is not installed (Debian: apt-get install liggghts openmpi-bin).
 #
+# GNU/Linux: the half load times itself with `date +%s%N` and `sleep 0.05`.
+#
 # usage: bench/identical_work.sh [DEMVV] [STEPS] [ROUNDS] [LOADS]
 #   defaults: build/demvv 5000 3 "idle half full"      (from the repository root)
 set -eu
@@ -27,7 +29,8 @@ cleanup() {
   [ -z "$load_pid" ] || kill "$load_pid" 2>/dev/null || true
   rm -rf "$work"
 }
-trap cleanup EXIT INT TERM
+trap cleanup EXIT
+trap 'cleanup; exit 130' INT TERM
 here=$(dirname "$0")
 "$demvv" run cases/p01_thesis_6000/case.prm --out "$work/prepared" --quiet
 python3 "$here/identical_work.py" write "$work/prepared/sample.json" "$work" "$steps"

@@ -109,9 +109,11 @@ int main(int argc, char **argv)
                  "other process is busy on, then up to every core)")
     ->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "No progress line (it is shown only when standard output is a terminal)");
-  run->add_option("--resume", resume_dir,
-                  "Continue the interrupted run in RUN_DIR from its checkpoint, bit for bit; the deck and --set "
-                  "values must be those it started with");
+  run
+    ->add_option("--resume", resume_dir,
+                 "Continue the interrupted run in RUN_DIR from its checkpoint, bit for bit; the deck and --set "
+                 "values must be those it started with")
+    ->check(directory_name);
   long pause_after = 0;
   run
     ->add_option("--pause-after", pause_after,

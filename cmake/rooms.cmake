@@ -15,7 +15,7 @@ function(demvv_room name)
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/app)
   deal_ii_setup_target(${name})
   # deal_ii_setup_target uses the plain signature: so must every later call.
-  target_compile_options(${name} PRIVATE ${DEMVV_WARNINGS} ${DEMVV_DEAL_II_DEBUG_INFO})
+  target_compile_options(${name} PRIVATE ${DEMVV_WARNINGS})
   if(DEMVV_FUZZ)
     # deal.II's flags are GCC's, which clang ignores where it does not know
     # them; its -O2 -g give way to the fuzz flags, which compile a third faster.

@@ -85,7 +85,9 @@ void declare_scene(DeckSchema &s)
   // A row costs about half a step (energies, counts, coordination): rows
   // 1e-5 s apart are 100 per millisecond, and with the steps of millimetre
   // grains (1e-7 s and longer) cost at most half a percent of a run.
-  s.real("interval", 1e-5, 0, inf, "s", "Time between output rows; 0 writes every step.");
+  s.real("interval", 1e-5, 0, inf, "s",
+         "Time between output rows; 0 writes every step.  The energy ledger and the overlap guard are checked "
+         "at every row.");
   s.text("track particles", "",
          "Balls whose motion goes to particles.csv: rows of the particle file, from 0, comma separated.");
   s.text("track pairs", "", "Pairs whose contact goes to contacts.csv: 'i-j' items, comma separated.");
@@ -261,9 +263,10 @@ void check_walls_clear(const Deck &deck, const dem::ParticleStore &p, const dem:
     }
 }
 
-/// The bonds of a list file: each pair once, between balls that touch (a
-/// contact bond joins a contact, thesis §3.4; one across a gap would pull
-/// the balls together with the full stiffness of the gap).
+/// The bonds of a list file: each pair once, between balls that touch
+/// within bonds/touch tolerance, as install = touching has them (a contact
+/// bond joins a contact, thesis §3.4; one across a gap would pull the balls
+/// together with the full stiffness of the gap).
 std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, const dem::ParticleStore &p)
 {
   const dem::Index n = p.size();
@@ -290,7 +293,7 @@ std::vector<ListedBond> parse_bond_list(const BondSpec &bonds, const dem::Partic
              "the pair is listed again (first at line " + std::to_string(t.line(at->second)) +
                "): expected each bond once");
     const double gap = (p.position[b.second] - p.position[b.first]).norm() - p.radius[b.first] - p.radius[b.second];
-    if (gap > 1e-9 * (p.radius[b.first] + p.radius[b.second]))
+    if (gap > bonds.settings.touch_tolerance * std::min(p.radius[b.first], p.radius[b.second]))
     {
       std::ostringstream what;
       what << "balls " << b.first << " and " << b.second << " are " << gap
@@ -399,7 +402,7 @@ public:
     const double t = sim.time();
     const dem::ParticleStore &P = sim.particles();
     for (dem::Index p : spec_.tracked)
-      result_.particles.add({t, double(spec_.file_row[p]), P.position[p].x(), P.position[p].y(), P.position[p].z(),
+      result_.particles.add({t, double(row_of(p)), P.position[p].x(), P.position[p].y(), P.position[p].z(),
                              P.velocity[p].x(), P.velocity[p].y(), P.velocity[p].z(), P.spin[p].x(), P.spin[p].y(),
                              P.spin[p].z(), P.force[p].x(), P.force[p].y(), P.force[p].z()});
     for (const dem::Pair &pr : spec_.tracked_pairs)
@@ -410,8 +413,8 @@ public:
         (P.position[pr.second] - P.position[pr.first]).norm() - P.radius[pr.first] - P.radius[pr.second];
       // Written by file rows, smaller first, the shear force on the second:
       // where the run's numbering swaps the pair, so does the force's sign.
-      const dem::Index a = spec_.file_row[pr.first], b = spec_.file_row[pr.second];
-      const dem::Vec3 shear = a < b ? s.shear_force : dem::Vec3(-s.shear_force);
+      const dem::Index a = row_of(pr.first), b = row_of(pr.second);
+      const dem::Vec3 shear = a < b ? s.shear_force : dem::Vec3(dem::Vec3::Zero() - s.shear_force); // no -0
       result_.contacts.add({t, double(std::min(a, b)), double(std::max(a, b)), s.touching() ? s.overlap : -gap,
                             s.normal_force, shear.norm(), shear.x(), shear.y(), shear.z(), c && c->bonded ? 1.0 : 0.0,
                             s.touching() ? 1.0 : 0.0});
@@ -506,6 +509,10 @@ public:
   }
 
 private:
+  /// Ball k's row in the particle file (k itself for a spec whose balls
+  /// were never renumbered).
+  dem::Index row_of(dem::Index k) const { return spec_.file_row.empty() ? k : spec_.file_row[k]; }
+
   const SceneSpec &spec_;
   SceneResult &result_;
 };

@@ -147,15 +147,32 @@ DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
                     what + "'s files (--out)");
   make_directories(dir);
   const std::string path = dir + "/" + lock_file;
+  dir_ = dir;
   path_ = path;
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  created_ = fd_ >= 0;
-  if (fd_ < 0 && errno == EEXIST)
-    fd_ = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
-  if (fd_ < 0)
-    throw DeckError(what + " directory '" + dir + "': cannot open its lock file " + lock_file + " (" +
-                    std::strerror(errno) + "): expected a directory demvv may write, holding no link of that name");
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+  // A lock file can be removed by a refused process (below) between our
+  // open and our flock: the lock then holds a file no one else can find.
+  // So the file locked must still be the one at the path; else try again.
+  bool locked = false;
+  for (int attempt = 0; attempt < 100 && !locked; ++attempt)
+  {
+    if (fd_ >= 0)
+      ::close(fd_);
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    created_ = fd_ >= 0;
+    if (fd_ < 0 && errno == EEXIST)
+      fd_ = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
+    if (fd_ < 0)
+      throw DeckError(what + " directory '" + dir + "': cannot open its lock file " + lock_file + " (" +
+                      std::strerror(errno) + "): expected a directory demvv may write, holding no link of that name");
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+      break;
+    struct stat held
+    {
+    }, named{};
+    locked = ::fstat(fd_, &held) == 0 && ::lstat(path.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+             held.st_ino == named.st_ino;
+  }
+  if (!locked)
   {
     char holder[32] = {0};
     const ssize_t n = ::pread(fd_, holder, sizeof holder - 1, 0);
@@ -179,13 +196,13 @@ DirectoryLock::~DirectoryLock()
     return;
   // A lock file this process made in a directory that never became demvv's
   // (no marker: the directory was refused) goes, so that a refusal leaves
-  // a foreign folder as it found it.  Otherwise the file stays: removing it
-  // would race a process waiting on it.
+  // a foreign folder as it found it; a process that opened it meanwhile
+  // finds it gone after its flock and opens a new one (constructor).
+  // Otherwise the file stays.
   struct stat st
   {
   };
-  const std::string dir = path_.substr(0, path_.size() - std::string(lock_file).size() - 1);
-  if (created_ && ::lstat((dir + "/" + ownership_marker).c_str(), &st) != 0)
+  if (created_ && ::lstat((dir_ + "/" + ownership_marker).c_str(), &st) != 0)
     ::unlink(path_.c_str());
   ::close(fd_); // releases the lock
 }

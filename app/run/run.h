@@ -182,6 +182,7 @@ public:
 
 private:
   int fd_ = -1;
+  std::string dir_;      ///< the directory locked
   std::string path_;     ///< the lock file
   bool created_ = false; ///< this process made the lock file
 };

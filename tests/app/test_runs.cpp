@@ -98,7 +98,9 @@ TEST_CASE("a scene's balls in any file order run alike, to the last bit, on any 
   std::vector<std::size_t> shuffled(balls.size());
   for (std::size_t k = 0; k < shuffled.size(); ++k)
     shuffled[k] = (k * 97) % balls.size(); // 97 and 343 are coprime: a permutation
-  const std::size_t a = 10, b = 11;        // lattice rows of two neighbours (same i, j; k and k + 1)
+  // Lattice rows of two neighbours (same i, j; k and k + 1) that the
+  // shuffle lists in the other order (rows 290 and 191).
+  const std::size_t a = 4, b = 5;
   std::size_t row_a = 0, row_b = 0;
   for (std::size_t k = 0; k < shuffled.size(); ++k)
   {
@@ -169,6 +171,7 @@ TEST_CASE("a scene's balls in any file order run alike, to the last bit, on any 
   // the smaller row first both times the force is on the same ball only
   // when the two orders agree on which row is smaller.
   const double flip = (row_a < row_b) == (a < b) ? 1.0 : -1.0;
+  REQUIRE(flip == -1.0); // the pair's order swaps: the shear force's sign must follow
   bool touched = false;
   for (std::size_t k = 0; k < in_order.contacts.rows(); ++k)
   {
@@ -184,8 +187,9 @@ TEST_CASE("a scene's balls in any file order run alike, to the last bit, on any 
 
 TEST_CASE("a scene's bond breaks and ParaView ids name balls by their row in the particle file", "[run][order]")
 {
-  // A bonded pair pulled apart, a third ball far off; listed as (far, a, b)
-  // and as (a, far, b): the break is between rows 1 and 2, then 0 and 2.
+  // A bonded pair pulled apart, a third ball far off; listed as (far, a, b),
+  // (a, far, b) and (b, far, a): the break is between rows 1 and 2, then 0
+  // and 2 twice.
   const fs::path dir = demvv_tests::test_folder("test_break_rows");
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -217,10 +221,13 @@ TEST_CASE("a scene's bond breaks and ParaView ids name balls by their row in the
   };
   const auto [first, first_frame] = breaks_of("far_first", {far, a, b});
   const auto [middle, middle_frame] = breaks_of("far_middle", {a, far, b});
+  const auto [reversed, reversed_frame] = breaks_of("reversed", {b, far, a});
   REQUIRE(first.size() == 2); // the header and one break
   REQUIRE(middle.size() == 2);
   CHECK(first[1] == "1,2,1");
   CHECK(middle[1] == "0,2,1");
+  REQUIRE(reversed.size() == 2);
+  CHECK(reversed[1] == "0,2,1"); // the run's pair (a, b) is rows (2, 0): written smaller first
   // The frames list the balls in the run's order, the same for both files
   // (a, b, then the far ball, along the curve); their ids are the rows of
   // each file.

@@ -19,10 +19,11 @@ deck=$cases/s01_box_six_planes/case.prm
 fail() { echo "FAIL: $*"; exit 1; }
 # The box for 0.3 s of simulated time on one thread: long enough that the
 # signal, sent once a few rows are written, arrives well before the end.
-run_box() { "$demvv" run "$deck" --set run/duration=0.3 --set "contact law/law=$law" --threads 1 --quiet "$@"; }
+duration=0.3
+run_box() { "$demvv" run "$deck" --set run/duration=$duration --set "contact law/law=$law" --threads 1 --quiet "$@"; }
 # In the background the function's subshell becomes demvv itself, so that $!
 # is the process the signal must reach.
-run_box_in_background() { exec "$demvv" run "$deck" --set run/duration=0.3 --set "contact law/law=$law" --threads 1 --quiet "$@"; }
+run_box_in_background() { exec "$demvv" run "$deck" --set run/duration=$duration --set "contact law/law=$law" --threads 1 --quiet "$@"; }
 
 passed=0
 for law in linear burgers; do
@@ -54,8 +55,11 @@ for law in linear burgers; do
       >"$work/resume_in_summary"
     [ "$(cat "$work/resume_in_summary")" = "demvv $continue_with" ] ||
       fail "$law $signal: summary.json resumes with '$(cat "$work/resume_in_summary")', the message with 'demvv $continue_with'"
-    run_box --set run/duration=0.4 --resume "$dir" 2>"$work/err_other"
-    [ $? -eq 2 ] || fail "$law $signal: a resume with another deck was not refused with exit code 2"
+    duration=0.4
+    run_box --resume "$dir" 2>"$work/err_other"
+    code=$?
+    duration=0.3
+    [ $code -eq 2 ] || fail "$law $signal: a resume with another deck was not refused with exit code 2"
     grep -q "another deck" "$work/err_other" || fail "$law $signal: the refusal does not say why: $(cat "$work/err_other")"
     if [ "$law$signal" = linearINT ]; then
       cp -r "$dir" "$work/other_build"
@@ -114,7 +118,8 @@ EOF
 chmod +x "$work/slow_gnuplot/gnuplot"
 dir=$work/drawing_run
 law=linear
-PATH="$work/slow_gnuplot:$PATH" run_box_in_background --out "$dir" --set run/duration=0.02 2>"$work/err_drawing" &
+duration=0.02
+PATH="$work/slow_gnuplot:$PATH" run_box_in_background --out "$dir" 2>"$work/err_drawing" &
 pid=$!
 tries=0
 while [ ! -e "$work/drawing" ]; do
