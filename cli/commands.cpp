@@ -104,19 +104,8 @@ void draw_run_figures(const std::string &run_dir, bool list_drawn)
 
 int command_run(const std::string &deck_path, const std::vector<std::string> &overrides, const RunOptions &options)
 {
-  // A deck refuses a key set twice; so does the command line (the last
-  // --set would win unseen).
-  std::map<std::string, std::string> set_by;
-  for (const std::string &o : overrides)
-  {
-    const std::string key = o.substr(0, o.find('='));
-    const auto first = key.find_first_not_of(" \t");
-    const std::string name =
-      first == std::string::npos ? key : key.substr(first, key.find_last_not_of(" \t") + 1 - first);
-    if (const auto [at, added] = set_by.emplace(name, o); !added)
-      throw DeckError("--set '" + o + "': the key is set again (first by --set '" + at->second +
-                      "'): expected each key once");
-  }
+  // A deck refuses a key set twice; so does the command line.
+  refuse_repeated_overrides(overrides);
   const Deck deck = Deck::from_file(deck_kinds(), deck_path, overrides);
   RunOptions o = options;
   if (o.out_dir.empty())
@@ -235,7 +224,16 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
                     "': not a directory: expected the folder of the case decks (default: " + default_cases_dir() + ")");
   const int used = apply_threads({"", threads, false});
   CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads};
-  const std::vector<CheckRecord> records = run_checks(ctx, only, true);
+  std::vector<CheckRecord> records;
+  try
+  {
+    records = run_checks(ctx, only, true);
+  }
+  catch (const MissingCaseDeck &e)
+  {
+    throw DeckError(std::string("--cases: ") + e.what() + ": expected the folder of the case decks (default: " +
+                    default_cases_dir() + ")");
+  }
   if (records.empty())
     throw DeckError("--only '" + only + "': no check id or title contains it");
   nlohmann::json prov = provenance(used, 0, "");

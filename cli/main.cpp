@@ -245,8 +245,8 @@ int main(int argc, char **argv)
 
   demvv::BenchOptions bench;
   auto *bench_cmd = app.add_subcommand("bench", "Time the engine on a bonded sample and print one line");
-  bench_cmd->add_option("--particles", bench.particles, "Number of balls (default 6000)")
-    ->check(CLI::Range(8L, 100000000L));
+  bench_cmd->add_option("--particles", bench.particles, "Number of balls, at least 100 (default 6000)")
+    ->check(CLI::Range(100L, 100000000L));
   bench_cmd->add_option("--steps", bench.steps, "Timed steps (default 2000)")->check(CLI::Range(1L, 1000000000L));
   bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   bench_cmd->add_option("--repeat", bench.repeat, "Timings to take; the fastest is reported (default 3)")

@@ -502,6 +502,21 @@ Deck Deck::defaults(const DeckKinds &kinds, const std::string &kind)
   return Deck(make_impl(kinds, kind, "demvv defaults"));
 }
 
+void refuse_repeated_overrides(const std::vector<std::string> &overrides)
+{
+  std::map<std::string, std::string> set_by;
+  for (const std::string &o : overrides)
+  {
+    const std::string key = o.substr(0, o.find('='));
+    const auto first = key.find_first_not_of(" \t");
+    const std::string name =
+      first == std::string::npos ? key : key.substr(first, key.find_last_not_of(" \t") + 1 - first);
+    if (const auto [at, added] = set_by.emplace(name, o); !added)
+      throw DeckError("--set '" + o + "': the key is set again (first by --set '" + at->second +
+                      "'): expected each key once");
+  }
+}
+
 Deck Deck::from_file(const DeckKinds &kinds, const std::string &path, const std::vector<std::string> &overrides)
 {
   const std::string text = read_input(path, "deck file", max_deck_bytes);

@@ -117,6 +117,12 @@ struct DeckRecord
   [[noreturn]] void fail(const std::string &key, const std::string &value, const std::string &expected) const;
 };
 
+/// Throws a DeckError when two of a command line's overrides
+/// ("section/key=value", as --set) name the same key: the last would win
+/// unseen.  (Deck::from_file() applies a repeated key in order, as sweeps
+/// use it; a user's command line may not.)
+void refuse_repeated_overrides(const std::vector<std::string> &overrides);
+
 class Deck
 {
 public:

@@ -700,6 +700,32 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
                     std::to_string(std::max(plan.seeds, 1)) + " seed(s) = " + std::to_string(count) +
                     " members: expected at most " + std::to_string(o.max_members) +
                     " (--max-members N to allow more, knowing each member is a run)");
+  // A point refused beside others that run is a finding of the sweep (its
+  // row says why); a sweep whose every point is refused would run nothing.
+  if (!plan.keys.empty())
+  {
+    std::string first_refusal;
+    const bool any_accepted = std::any_of(plan.points.begin(), plan.points.end(), [&](const auto &point)
+    {
+      std::vector<std::string> overrides;
+      for (std::size_t k = 0; k < plan.keys.size(); ++k)
+        overrides.push_back(plan.keys[k] + "=" + point[k]);
+      try
+      {
+        Deck::from_file(deck_kinds(), plan.base_deck, overrides);
+        return true;
+      }
+      catch (const DeckError &e)
+      {
+        if (first_refusal.empty())
+          first_refusal = e.what();
+        return false;
+      }
+    });
+    if (!any_accepted)
+      throw DeckError("sweep of " + plan.base_deck + ": the deck refuses every point (the first: " + first_refusal +
+                      "): expected values the deck accepts");
+  }
   std::vector<Member> members = plan_members(plan);
   std::unique_ptr<DirectoryLock> lock; // rank 0's, for the whole sweep
   on_rank_zero_for_all(true,

@@ -335,6 +335,7 @@ int command_time_step(const TimeStepStudyOptions &o)
     throw DeckError(o.base_deck + ": declares no " + safety_key + ": expected a deck with an automatic time step");
   SweepPlan plan{o.base_deck, {safety_key}, {}, o.seeds, 1};
   std::vector<std::string> set_values;
+  refuse_repeated_overrides(o.sets);
   for (const std::string &set : o.sets)
   {
     const std::size_t eq = set.find('=');

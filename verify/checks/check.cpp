@@ -3,6 +3,7 @@
 #include "build_info.h"
 
 #include <cmath>
+#include <filesystem>
 
 namespace demvv
 {
@@ -111,4 +112,12 @@ const Check *find_check(std::string_view id)
 }
 
 std::string default_cases_dir() { return std::string(build_info::source_dir) + "/cases"; }
+
+std::string CheckContext::case_deck(const std::string &name) const
+{
+  const std::string deck = cases_dir + "/" + name + "/case.prm";
+  if (!std::filesystem::is_regular_file(deck))
+    throw MissingCaseDeck("the cases folder '" + cases_dir + "' has no " + name + "/case.prm");
+  return deck;
+}
 } // namespace demvv

@@ -25,6 +25,7 @@
 #include "app/plot/figure.h"
 #include "app/reference/convergence.h"
 
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -94,6 +95,17 @@ struct CheckContext
   std::string cases_dir; ///< where the case decks are
   bool quick = true;     ///< fewer levels / shorter runs
   int threads = 0;       ///< demvv verify --threads: the most each run of a check uses (0: demvv's choice)
+
+  /// The deck of case `name` (cases_dir/name/case.prm); throws
+  /// MissingCaseDeck when the folder has none.
+  std::string case_deck(const std::string &name) const;
+};
+
+/// A check's case deck is missing from the cases folder it was given: bad
+/// input to demvv verify (exit 2), not a failure of the code.
+struct MissingCaseDeck : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
 };
 
 struct Check

@@ -88,7 +88,7 @@ struct BulkStudy
 BulkStudy bulk_study(const CheckContext &ctx)
 {
   BulkStudy s;
-  s.deck = ctx.cases_dir + "/t66_friction/case.prm";
+  s.deck = ctx.case_deck("t66_friction");
   // A row every 1e-5 of strain: the peak is the largest row, and between
   // rows every 1e-4 (the deck's) a tooth of the stress curve rises by
   // about 0.6 % of the peak, which would hide what the studies measure.

@@ -13,7 +13,7 @@ namespace demvv
 {
 Deck load_case(const CheckContext &ctx, const std::string &name, const std::vector<std::string> &overrides)
 {
-  return Deck::from_file(deck_kinds(), ctx.cases_dir + "/" + name + "/case.prm", overrides);
+  return Deck::from_file(deck_kinds(), ctx.case_deck(name), overrides);
 }
 
 RunOptions run_options(const CheckContext &ctx)

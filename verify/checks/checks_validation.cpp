@@ -110,7 +110,7 @@ struct Study
 Study study(const CheckContext &ctx)
 {
   Study s;
-  s.deck = ctx.cases_dir + "/t75_table_7_4/case.prm";
+  s.deck = ctx.case_deck("t75_table_7_4");
   if (ctx.quick)
     s.sample = {"sample/source=lattice", "sample/diameter=0.008", "sample/height=0.008", "loading/final strain=0.025",
                 "loading/strain rate=2.5"};

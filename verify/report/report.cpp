@@ -86,6 +86,10 @@ std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &
     {
       r.outcome = c.run(ctx);
     }
+    catch (const MissingCaseDeck &)
+    {
+      throw; // bad input to the whole verification, not this check's result
+    }
     catch (const std::exception &e)
     {
       r.error = e.what();

@@ -81,6 +81,8 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
 void write_reports(const std::vector<CheckRecord> &records, const nlohmann::json &provenance,
                    const std::string &out_dir);
 
-/// Runs the checks whose id or title contains `only` (all if empty).
+/// Runs the checks whose id or title contains `only` (all if empty).  A
+/// check that throws is recorded as failed, except for MissingCaseDeck,
+/// which is passed on (the cases folder given is bad input).
 std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose);
 } // namespace demvv
