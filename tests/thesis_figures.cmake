@@ -8,8 +8,12 @@
 #     command runs that deck;
 #   - every cases/... path in a command exists, and so does every deck
 #     named relative to a deck (../<case>/case.prm: cases/<case>/case.prm);
-#   - at_thesis_conditions is yes or no; verdict is agrees, differs or
-#     not comparable; a "not measured" row is "not comparable";
+#   - at_thesis_conditions is yes, no or cannot (the thesis does not give a
+#     condition the run needs: what_differs then begins "Not given by the
+#     thesis: " and names it); at least 25 rows are yes or cannot, so every
+#     other row is a comparison demvv could run at the thesis's conditions
+#     and has not; verdict is agrees, differs or not comparable; a "not
+#     measured" row is "not comparable";
 #   - what_differs is given where the conditions are not the thesis's or
 #     nothing was measured; build and date are never empty, and a date is
 #     YYYY-MM-DD or "unrecorded".
@@ -48,6 +52,9 @@ set(_last_key -1)
 set(_line_no 0)
 foreach(_k -1 0 1 2)
   set(_count_${_k} 0)
+endforeach()
+foreach(_k yes no cannot)
+  set(_at_${_k} 0)
 endforeach()
 foreach(_line IN LISTS _lines)
   math(EXPR _line_no "${_line_no} + 1")
@@ -186,10 +193,15 @@ foreach(_line IN LISTS _lines)
   if(_uncertainty STREQUAL "")
     list(APPEND _bad "${_where}: uncertainty is empty (write 'not estimated')")
   endif()
-  if(NOT _at STREQUAL "yes" AND NOT _at STREQUAL "no")
-    list(APPEND _bad "${_where}: at_thesis_conditions is '${_at}', not yes or no")
+  if(_at STREQUAL "yes" OR _at STREQUAL "no" OR _at STREQUAL "cannot")
+    math(EXPR _at_${_at} "${_at_${_at}} + 1")
+  else()
+    list(APPEND _bad "${_where}: at_thesis_conditions is '${_at}', not yes, no or cannot")
   endif()
-  if(_differs STREQUAL "" AND (_at STREQUAL "no" OR _measured STREQUAL "not measured"))
+  if(_at STREQUAL "cannot" AND NOT _differs MATCHES "^Not given by the thesis: [^ ]")
+    list(APPEND _bad "${_where}: 'cannot' without what_differs beginning 'Not given by the thesis: ' and what it omits")
+  endif()
+  if(_differs STREQUAL "" AND (NOT _at STREQUAL "yes" OR _measured STREQUAL "not measured"))
     list(APPEND _bad "${_where}: what_differs is empty where the conditions differ or nothing was measured")
   endif()
   list(FIND _verdicts "${_verdict}" _known)
@@ -212,6 +224,10 @@ endforeach()
 if(NOT _rows EQUAL _rows_expected)
   list(APPEND _bad "${_rows} rows, not ${_rows_expected} (one per simulation figure of the thesis)")
 endif()
+math(EXPR _at_thesis "${_at_yes} + ${_at_cannot}")
+if(_at_thesis LESS 25)
+  list(APPEND _bad "${_at_thesis} rows at the thesis's conditions or saying why they cannot be (yes or cannot), fewer than 25")
+endif()
 if(_bad)
   string(REPLACE ";" "\n" _msg "${_bad}")
   string(REPLACE "${_semicolon}" ";" _msg "${_msg}")
@@ -221,4 +237,5 @@ if(_bad)
   message(FATAL_ERROR "thesis figures table broken (cases/thesis_figures.csv):\n${_msg}")
 endif()
 message(STATUS "thesis figures table holds: ${_rows} figures (${_count_0} agree, ${_count_1} differ, "
-               "${_count_2} not comparable); ${_paths} deck paths in its commands exist")
+               "${_count_2} not comparable; ${_at_yes} at the thesis's conditions, ${_at_cannot} that cannot be, "
+               "${_at_no} not yet); ${_paths} deck paths in its commands exist")
