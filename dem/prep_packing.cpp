@@ -56,6 +56,8 @@ private:
 
   StageReport measure(const std::string &name, long cycles, bool converged) const;
   double cell_volume() const;
+  /// The cell's six bands of equal volume, from its walls now.
+  CylinderBands cell_bands() const;
   double solid_fraction() const;
   void scale_radii(double factor);
   void say(const std::string &line) const
@@ -87,6 +89,17 @@ private:
   std::unique_ptr<Simulation> sim_;
   PackingReport report_;
 };
+
+CylinderBands Preparation::cell_bands() const
+{
+  const WallSet &w = sim_->walls();
+  CylinderBands b;
+  b.axis = w[cell_.bottom].direction;
+  b.base = w[cell_.lateral].point + b.axis * (w[cell_.bottom].point - w[cell_.lateral].point).dot(b.axis);
+  b.height = (w[cell_.top].point - w[cell_.bottom].point).dot(b.axis);
+  b.radius = w[cell_.lateral].radius;
+  return b;
+}
 
 double Preparation::cell_volume() const
 {
@@ -473,6 +486,15 @@ void Preparation::bond_and_release()
   report_.fewest_contacts = count.empty() ? 0 : *std::min_element(count.begin(), count.end());
   report_.coordination_before_bonding = coordination_number(sim_->particles(), sim_->contacts());
   report_.mean_contact_force_before = contact_force_statistics(sim_->contacts()).mean;
+  report_.force_bands = contact_force_bands(*sim_, cell_bands());
+  const BandMeans &f = report_.force_bands;
+  say("isotropic contact forces by band (bottom, middle, top; core, rim): " + [&f]
+      {
+        std::string s;
+        for (int b = 0; b < CylinderBands::count; ++b)
+          s += (b ? ", " : "") + fmt(f.mean[b] / f.overall_mean);
+        return s;
+      }() + " of the mean " + fmt(f.overall_mean) + " N; ANOVA p = " + fmt(f.p_value));
 
   ParticleStore &p = sim_->particles();
   sim_->refresh_contacts();

@@ -32,6 +32,7 @@
 
 #include "dem/bonds.h"
 #include "dem/simulation.h"
+#include "dem/spatial_bands.h"
 #include "dem/specimen.h"
 
 #include <cstdint>
@@ -109,6 +110,7 @@ struct PackingReport
   double fabric_eigenvalues[3] = {0, 0, 0};
   BondReport bonds;
   double mean_contact_force_before = 0; ///< N, before bonding
+  BandMeans force_bands;                ///< compressive normal forces by band before bonding (thesis Fig. 5.6)
   double locked_in_mean_force = 0;      ///< N, mean |F| after settling without the lateral wall
   double locked_in_max_force = 0;       ///< N
   double wall_seconds = 0;

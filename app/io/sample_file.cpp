@@ -252,6 +252,21 @@ void check_cell_wall(const Fields &f, const json &cell, const char *name, dem::W
 
 json report_json(const dem::PackingReport &r)
 {
+  const auto band_means_json = [](const dem::BandMeans &m)
+  {
+    json bands = json::array();
+    for (int b = 0; b < dem::CylinderBands::count; ++b)
+      bands.push_back({{"band", dem::CylinderBands::name(b)},
+                       {"contacts", m.contacts[b]},
+                       {"mean_normal_force_n", m.mean[b]},
+                       {"half_width_95_n", m.half_width[b]}});
+    return json{{"bands", bands},
+                {"overall_mean_normal_force_n", m.overall_mean},
+                {"anova_f", m.f_statistic},
+                {"anova_p", m.p_value},
+                {"note", "compressive ball-ball contacts at their contact points; six bands of equal volume (thirds of "
+                         "the height, core r < R/sqrt(2) and rim); p treats contacts as independent"}};
+  };
   json stages = json::array();
   for (const auto &s : r.stages)
     stages.push_back({{"name", s.name},
@@ -289,6 +304,7 @@ json report_json(const dem::PackingReport &r)
             {"mean_normal_strength_n", r.bonds.mean_normal_strength},
             {"mean_shear_strength_n", r.bonds.mean_shear_strength}}},
           {"mean_contact_force_before_bonding_n", r.mean_contact_force_before},
+          {"contact_force_bands_before_bonding", band_means_json(r.force_bands)},
           {"locked_in_mean_force_n", r.locked_in_mean_force},
           {"locked_in_max_force_n", r.locked_in_max_force},
           {"wall_seconds", r.wall_seconds}};

@@ -6,10 +6,12 @@
 #include "dem/neighbors.h"
 #include "dem/protocol_uniaxial.h"
 #include "dem/sample_lattice.h"
+#include "dem/spatial_bands.h"
 #include "dem/spatial_order.h"
 #include "dem/stability.h"
 
 #include <catch2/catch.hpp>
+#include <gsl/gsl_cdf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -227,6 +229,70 @@ TEST_CASE("the Morton order is a permutation, canonical whatever the input order
   // (about 12 mm) in the scrambled list.
   CHECK(mean_step(listed) > 10e-3);
   CHECK(mean_step(b) < 4e-3);
+}
+
+TEST_CASE("six bands of equal volume and their analysis of variance", "[dem][measure]")
+{
+  dem::CylinderBands bands;
+  bands.base = dem::Vec3(1, 2, 3);
+  bands.height = 0.03;
+  bands.radius = 0.01;
+  // Thirds of the height, the core inside R / sqrt(2) (equal areas); a
+  // point beyond the cylinder counts in the nearest band.
+  const double core = 0.01 / std::sqrt(2.0);
+  CHECK(bands.band(bands.base + dem::Vec3(0.99 * core, 0, 0.001)) == 0);
+  CHECK(bands.band(bands.base + dem::Vec3(0, 1.01 * core, 0.001)) == 1);
+  CHECK(bands.band(bands.base + dem::Vec3(0, 0, 0.0101)) == 2);
+  CHECK(bands.band(bands.base + dem::Vec3(0.0102, 0, 0.029)) == 5);
+  CHECK(bands.band(bands.base + dem::Vec3(0, 0, -0.001)) == 0);
+  CHECK(bands.band(bands.base + dem::Vec3(0, 0, 0.031)) == 4);
+
+  // Two bands by hand: {1, 2, 3} and {4, 5, 6}: means 2 and 5, between-band
+  // sum of squares 13.5 on 1 degree of freedom, within 4 on 4: F = 13.5,
+  // and with two groups F(1, n) is t(n) squared.
+  std::vector<dem::Vec3> points;
+  std::vector<double> values;
+  for (int i = 0; i < 6; ++i)
+  {
+    points.push_back(bands.base + dem::Vec3(i < 3 ? 0.0 : 0.009, 0, 0.001));
+    values.push_back(i + 1);
+  }
+  const dem::BandMeans two = dem::band_means(bands, points, values);
+  CHECK(two.contacts[0] == 3);
+  CHECK(two.contacts[1] == 3);
+  CHECK(two.mean[0] == 2);
+  CHECK(two.mean[1] == 5);
+  CHECK(std::isnan(two.mean[2]));
+  CHECK(two.overall_mean == 3.5);
+  CHECK_THAT(two.f_statistic, Catch::Matchers::WithinRel(13.5, 1e-14));
+  CHECK_THAT(two.p_value, Catch::Matchers::WithinRel(2 * gsl_cdf_tdist_Q(std::sqrt(13.5), 4), 1e-10));
+  CHECK_THAT(two.half_width[0], Catch::Matchers::WithinRel(1.96 * 1 / std::sqrt(3.0), 1e-14));
+
+  // A quantity that does not depend on where it is: the bands agree (p far
+  // from 0); one that grows with the height by 20 %: they do not.
+  std::vector<double> flat, graded;
+  points.clear();
+  std::uint64_t state = 12345;
+  const auto uniform = [&state]
+  {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) / double(1ULL << 53);
+  };
+  for (int i = 0; i < 6000; ++i)
+  {
+    const double r = 0.01 * std::sqrt(uniform()), a = 2 * dem::pi * uniform(), z = 0.03 * uniform();
+    points.push_back(bands.base + dem::Vec3(r * std::cos(a), r * std::sin(a), z));
+    const double noise = -std::log(1 - uniform()); // exponential, as contact forces roughly are
+    flat.push_back(noise);
+    graded.push_back(noise * (1 + 0.2 * z / 0.03));
+  }
+  const dem::BandMeans even = dem::band_means(bands, points, flat);
+  CHECK(even.p_value > 0.01);
+  for (int b = 0; b < dem::CylinderBands::count; ++b)
+    CHECK(std::abs(even.mean[b] - even.overall_mean) < 2 * even.half_width[b]);
+  const dem::BandMeans rising = dem::band_means(bands, points, graded);
+  CHECK(rising.p_value < 1e-6);
+  CHECK(rising.mean[4] > rising.mean[0] + rising.half_width[4] + rising.half_width[0]);
 }
 
 TEST_CASE("a test stops when its platens close on no sample or a contact overlaps beyond half a radius",
