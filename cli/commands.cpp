@@ -231,8 +231,8 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
   }
   catch (const MissingCaseDeck &e)
   {
-    throw DeckError(std::string("--cases: ") + e.what() + ": expected the folder of the case decks (default: " +
-                    default_cases_dir() + ")");
+    throw DeckError(std::string("--cases: ") + e.what() +
+                    ": expected the folder of the case decks (default: " + default_cases_dir() + ")");
   }
   if (records.empty())
     throw DeckError("--only '" + only + "': no check id or title contains it");

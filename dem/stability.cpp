@@ -24,8 +24,8 @@ Eigen::Matrix3d cross_matrix(const Vec3 &v)
 /// Adds B^T D B for one contact.  Relative displacement at the contact point
 /// (second minus first): delta = u_B + a_B [n]x theta_B - u_A + a_A [n]x theta_A,
 /// so B = [-I, a_A [n]x, I, a_B [n]x] on (u_A, theta_A, u_B, theta_B).
-void add_contact(gsl_matrix &K, int first, int second, const Vec3 &n, double arm_first, double arm_second,
-                 double kn, double ks)
+void add_contact(gsl_matrix &K, int first, int second, const Vec3 &n, double arm_first, double arm_second, double kn,
+                 double ks)
 {
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
   const Eigen::Matrix3d D = kn * n * n.transpose() + ks * P;

@@ -277,6 +277,25 @@ struct Deck::Impl final : DeckSchema
         }
   }
 
+  /// A section the deck opens must be one of the kind's (or an instance of
+  /// a repeated one, declared here with its defaults if nothing in it was
+  /// set): an empty section of another name would be dropped unseen.
+  void open_section(const std::string &section, const Origin &o)
+  {
+    check_instance_names(section, o);
+    const std::string prefix = section + "/";
+    const auto known = [&]
+    {
+      const auto it = entries.lower_bound(prefix);
+      return it != entries.end() && it->first.compare(0, prefix.size(), prefix) == 0;
+    };
+    if (!known())
+      declare_instance(prefix + "entry");
+    if (!known())
+      reject(o, "unknown section '" + escaped(section) + "'; `demvv defaults " + kind + "` lists the sections of a " +
+                  kind + " deck");
+  }
+
   // --- assignment --------------------------------------------------------
   [[noreturn]] void reject(const Origin &o, const std::string &message) const
   {
@@ -410,9 +429,16 @@ struct PrmAssignment
   int line;
 };
 
-std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
+/// A deck's assignments and the sections it opens (path, line; 0 in JSON).
+struct DeckText
 {
-  std::vector<PrmAssignment> out;
+  std::vector<PrmAssignment> assignments;
+  std::vector<std::pair<std::string, int>> sections;
+};
+
+DeckText read_prm(const std::string &path, std::istream &in)
+{
+  DeckText out;
   std::vector<std::string> stack;
   // Where each section and key was first written: a second one would merge
   // into the first (two 'subsection plane a') or silently win over it.
@@ -441,6 +467,7 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
         throw DeckError(where + ": subsection '" + escaped(first->first) + "' is opened again (first at line " +
                         std::to_string(first->second) +
                         "): expected each section once (its entries would merge into the first one's)");
+      out.sections.emplace_back(path_of(), line);
     }
     else if (s == "end")
     {
@@ -461,7 +488,7 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
       if (const auto [first, fresh] = written.emplace(key, line); !fresh && key != "kind")
         throw DeckError(where + ": key '" + escaped(key) + "' is set again (first at line " +
                         std::to_string(first->second) + "): expected each key once (the last would win silently)");
-      out.push_back({key, trimmed(s.substr(eq + 1)), line});
+      out.assignments.push_back({key, trimmed(s.substr(eq + 1)), line});
     }
     else
       throw DeckError(where + ": cannot read '" + s + "': expected 'set KEY = VALUE', 'subsection NAME' or 'end'");
@@ -471,20 +498,29 @@ std::vector<PrmAssignment> read_prm(const std::string &path, std::istream &in)
   return out;
 }
 
-void flatten_json(const nlohmann::json &j, const std::string &prefix, std::vector<PrmAssignment> &out,
-                  const std::string &path)
+void flatten_json(const nlohmann::json &j, const std::string &prefix, DeckText &out, const std::string &path)
 {
   for (const auto &[k, v] : j.items())
   {
     const std::string key = prefix.empty() ? k : prefix + "/" + k;
+    // {"a": {"b": 1}} and {"a/b": 2} name one key: the last would win.
+    const auto same = [&key](const PrmAssignment &a) { return a.key == key; };
+    const auto same_section = [&key](const std::pair<std::string, int> &s) { return s.first == key; };
+    if (std::any_of(out.assignments.begin(), out.assignments.end(), same) ||
+        std::any_of(out.sections.begin(), out.sections.end(), same_section))
+      throw DeckError(path + ": key '" + escaped(key) +
+                      "' is given twice (as a nested object and as a path with '/'): expected each key once");
     if (v.is_object())
+    {
+      out.sections.emplace_back(key, 0);
       flatten_json(v, key, out, path);
+    }
     else if (v.is_string())
-      out.push_back({key, v.get<std::string>(), 0});
+      out.assignments.push_back({key, v.get<std::string>(), 0});
     else if (v.is_boolean())
-      out.push_back({key, v.get<bool>() ? "true" : "false", 0});
+      out.assignments.push_back({key, v.get<bool>() ? "true" : "false", 0});
     else if (v.is_number())
-      out.push_back({key, v.dump(), 0}); // shortest text that reads back to the same number
+      out.assignments.push_back({key, v.dump(), 0}); // shortest text that reads back to the same number
     else
       throw DeckError(path + ": key '" + key + "' has a JSON " + std::string(v.type_name()) +
                       ": expected a string, number or boolean");
@@ -520,20 +556,21 @@ void refuse_repeated_overrides(const std::vector<std::string> &overrides)
 Deck Deck::from_file(const DeckKinds &kinds, const std::string &path, const std::vector<std::string> &overrides)
 {
   const std::string text = read_input(path, "deck file", max_deck_bytes);
-  std::vector<PrmAssignment> lines;
+  DeckText parsed;
   const bool json = path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
   if (json)
   {
     const nlohmann::json j = parse_json_input(text, path, "deck");
     if (!j.is_object())
       throw DeckError(path + ": expected a JSON object at the top level");
-    flatten_json(j, "", lines, path);
+    flatten_json(j, "", parsed, path);
   }
   else
   {
     std::istringstream in(text);
-    lines = read_prm(path, in);
+    parsed = read_prm(path, in);
   }
+  const std::vector<PrmAssignment> &lines = parsed.assignments;
 
   const auto kind_line = std::find_if(lines.begin(), lines.end(), [](const auto &a) { return a.key == "kind"; });
   if (kind_line == lines.end())
@@ -550,6 +587,8 @@ Deck Deck::from_file(const DeckKinds &kinds, const std::string &path, const std:
   impl->path = path;
   for (const auto &a : lines)
     impl->assign(a.key, a.value, {a.line > 0 ? path + ":" + std::to_string(a.line) : path});
+  for (const auto &[section, line] : parsed.sections)
+    impl->open_section(section, {line > 0 ? path + ":" + std::to_string(line) : path});
   Deck deck(std::move(impl));
   for (const auto &o : overrides)
   {

@@ -705,23 +705,24 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
   if (!plan.keys.empty())
   {
     std::string first_refusal;
-    const bool any_accepted = std::any_of(plan.points.begin(), plan.points.end(), [&](const auto &point)
-    {
-      std::vector<std::string> overrides;
-      for (std::size_t k = 0; k < plan.keys.size(); ++k)
-        overrides.push_back(plan.keys[k] + "=" + point[k]);
-      try
-      {
-        Deck::from_file(deck_kinds(), plan.base_deck, overrides);
-        return true;
-      }
-      catch (const DeckError &e)
-      {
-        if (first_refusal.empty())
-          first_refusal = e.what();
-        return false;
-      }
-    });
+    const bool any_accepted = std::any_of(plan.points.begin(), plan.points.end(),
+                                          [&](const auto &point)
+                                          {
+                                            std::vector<std::string> overrides;
+                                            for (std::size_t k = 0; k < plan.keys.size(); ++k)
+                                              overrides.push_back(plan.keys[k] + "=" + point[k]);
+                                            try
+                                            {
+                                              Deck::from_file(deck_kinds(), plan.base_deck, overrides);
+                                              return true;
+                                            }
+                                            catch (const DeckError &e)
+                                            {
+                                              if (first_refusal.empty())
+                                                first_refusal = e.what();
+                                              return false;
+                                            }
+                                          });
     if (!any_accepted)
       throw DeckError("sweep of " + plan.base_deck + ": the deck refuses every point (the first: " + first_refusal +
                       "): expected values the deck accepts");
