@@ -603,6 +603,11 @@ CellSize cell_size(const PackingSettings &s)
     throw PackingError(s.particles > 0 ? "particles" : "diameter",
                        "the cell (D = " + fmt(c.diameter) + " m, H = " + fmt(c.height) +
                          " m) is too small for one ball of radius " + fmt(s.radius) + " m");
+  if (c.particles < min_packing_balls)
+    throw PackingError(s.particles > 0 ? "particles" : "diameter",
+                       std::to_string(c.particles) + " balls: expected at least " + std::to_string(min_packing_balls) +
+                         " (a smaller packing is all wall layer: no ball has a bulk neighbourhood, and the "
+                         "preparation's measures mean nothing)");
   return c;
 }
 

@@ -71,7 +71,8 @@ void declare_prepare(DeckSchema &s)
   s.text("title", "", "One line saying what this sample is for (copied to the sample file).");
   s.enter("sample");
   s.integer("particles", 6000, 0, 100000000,
-            "Number of balls; 0 takes the cell diameter and height and eq. 5.1 (N = 3 V (1 - n) / (4 pi R^3)).");
+            "Number of balls, at least 50; 0 takes the cell diameter and height and eq. 5.1 "
+            "(N = 3 V (1 - n) / (4 pi R^3)).");
   s.real("ball radius", 0.885e-3, 0, inf, "m", "Final radius of every ball (thesis: 1.77 mm diameter sand).", true);
   s.real("diameter", 0, 0, inf, "m", "Cell diameter, used when particles = 0.");
   s.real("height", 0, 0, inf, "m", "Cell height, used when particles = 0.");

@@ -610,6 +610,9 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
   spec.fit_to = window[1];
   if (!(spec.fit_to > spec.fit_from))
     deck.fail("measurement/fit window", "expected two increasing strains");
+  if (!(spec.fit_from < spec.final_strain))
+    deck.fail("measurement/fit window", "expected a window that starts below loading/final strain (" +
+                                          format_number(spec.final_strain) + "): the test stops before it");
   spec.output.interval = deck.real("output/strain interval");
   spec.output.paraview = deck.flag("output/paraview");
   spec.output.paraview_interval = deck.real("output/paraview strain interval");
