@@ -261,6 +261,14 @@ CheckOutcome check_burgers_pull(const CheckContext &ctx)
 
 namespace
 {
+/// Eq. 7.21's claim on a viscosity-scaled pull: its force-displacement
+/// curve is the closed form of `law` at speed `v`, to the run's own error.
+Metric same_curve(const std::string &name, const Pull &run, const dem::BurgersConstants &law, double v)
+{
+  return bound(name, curve_error(run, law, v), pull_tolerance(run), false, ToleranceClass::B,
+               "eq. 7.21 is exact; the run's own trapezoidal error, (lambda_2 dt)^2/12, and a rounding per step");
+}
+
 /// Figs. 7.8-7.10 at thesis Table 7.1's own scale (every constant 1 MN/m
 /// or MN s/m, 1 m/s).  The thesis's slow pull (0.01 m/s for 100 s, 8e7
 /// steps) is represented by its closed form, which V15 holds the engine to;
@@ -271,11 +279,9 @@ void table_7_1_scaling(const CheckContext &ctx, CheckOutcome &out)
   const double v = 1, slow = v / 100;
   // Fig. 7.9 / 7.10(a): both viscosities / 100 at 1 m/s against 1/100 of the velocity.
   const Pull both = pull(ctx, "v15_burgers_pull", table_7_1_pull("1", "1e4", "1e4"));
-  out.metrics.push_back(
-    bound("Table 7.1 scale, both viscosities / 100 at 1 m/s: max |F(u) - eq. 7.18 at 0.01 m/s| "
-          "/ (C_inf v)",
-          curve_error(both, unscaled, slow), pull_tolerance(both), false, ToleranceClass::B,
-          "eq. 7.21 is exact; the run's own trapezoidal error, (lambda_2 dt)^2/12, and a rounding per step"));
+  out.metrics.push_back(same_curve("Table 7.1 scale, both viscosities / 100 at 1 m/s: max |F(u) - eq. 7.18 at "
+                                   "0.01 m/s| / (C_inf v)",
+                                   both, unscaled, slow));
   // Fig. 7.8: C_inf alone / 100 at 1 m/s against 1/100 of the velocity.
   const Pull c_inf = pull(ctx, "v15_burgers_pull", table_7_1_pull("1", "1e4", "1e6"));
   const double expected_gap = closed_form_gap(c_inf, c_inf.law, v, unscaled, slow);
@@ -285,11 +291,9 @@ void table_7_1_scaling(const CheckContext &ctx, CheckOutcome &out)
                                 " of C_inf v; at least half of that"));
   // Fig. 7.10(b): 100 m/s with both viscosities / 100 against the unscaled pull.
   const Pull fast = pull(ctx, "v15_burgers_pull", table_7_1_pull("100", "1e4", "1e4"));
-  out.metrics.push_back(
-    bound("Table 7.1 scale, 100 m/s with both viscosities / 100: max |F(u) - eq. 7.18 at 1 m/s| "
-          "/ (C_inf v)",
-          curve_error(fast, unscaled, v), pull_tolerance(fast), false, ToleranceClass::B,
-          "eq. 7.21 is exact; the run's own trapezoidal error, (lambda_2 dt)^2/12, and a rounding per step"));
+  out.metrics.push_back(same_curve("Table 7.1 scale, 100 m/s with both viscosities / 100: max |F(u) - eq. 7.18 at "
+                                   "1 m/s| / (C_inf v)",
+                                   fast, unscaled, v));
   out.notes.push_back("Table 7.1 scale: " + std::to_string(both.steps) + " + " + std::to_string(c_inf.steps) + " + " +
                       std::to_string(fast.steps) + " steps; the unscaled slow pull would take " + num(100 / both.dt) +
                       " steps.");
