@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace demvv
@@ -434,6 +435,7 @@ struct DeckText
 {
   std::vector<PrmAssignment> assignments;
   std::vector<std::pair<std::string, int>> sections;
+  std::set<std::string> named; ///< every key and section path so far (JSON: one may come twice)
 };
 
 DeckText read_prm(const std::string &path, std::istream &in)
@@ -504,10 +506,7 @@ void flatten_json(const nlohmann::json &j, const std::string &prefix, DeckText &
   {
     const std::string key = prefix.empty() ? k : prefix + "/" + k;
     // {"a": {"b": 1}} and {"a/b": 2} name one key: the last would win.
-    const auto same = [&key](const PrmAssignment &a) { return a.key == key; };
-    const auto same_section = [&key](const std::pair<std::string, int> &s) { return s.first == key; };
-    if (std::any_of(out.assignments.begin(), out.assignments.end(), same) ||
-        std::any_of(out.sections.begin(), out.sections.end(), same_section))
+    if (!out.named.insert(key).second)
       throw DeckError(path + ": key '" + escaped(key) +
                       "' is given twice (as a nested object and as a path with '/'): expected each key once");
     if (v.is_object())
