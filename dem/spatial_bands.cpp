@@ -1,5 +1,6 @@
 #include "dem/spatial_bands.h"
 
+#include "dem/contact_model.h"
 #include "dem/simulation.h"
 
 #include <gsl/gsl_cdf.h>
@@ -81,9 +82,8 @@ BandMeans contact_force_bands(const Simulation &sim, const CylinderBands &bands)
     const Contact &k = contacts[c];
     if (!k.state.touching() || k.state.normal_force <= 0)
       continue;
-    const Vec3 d = p.position[k.second] - p.position[k.first];
-    const double overlap = p.radius[k.first] + p.radius[k.second] - d.norm();
-    points.push_back(p.position[k.first] + d.normalized() * (p.radius[k.first] - 0.5 * overlap));
+    const ContactGeometry g = sphere_sphere(p, k.first, k.second);
+    points.push_back(p.position[k.first] + g.arm_first * g.normal);
     forces.push_back(k.state.normal_force);
   }
   return band_means(bands, points, forces);

@@ -32,4 +32,8 @@ ParticleStore renumbered(const ParticleStore &p, const std::vector<Index> &order
 
 /// The inverse permutation: inverse[order[k]] = k.
 std::vector<Index> inverse_permutation(const std::vector<Index> &order);
+
+/// Ball k's row in the file it was read from, given `rows` (rows[k], the
+/// order a renumbering used); empty `rows`: never renumbered, k itself.
+inline Index file_row(const std::vector<Index> &rows, Index k) { return rows.empty() ? k : rows[k]; }
 } // namespace dem

@@ -511,7 +511,7 @@ public:
 private:
   /// Ball k's row in the particle file (k itself for a spec whose balls
   /// were never renumbered).
-  dem::Index row_of(dem::Index k) const { return spec_.file_row.empty() ? k : spec_.file_row[k]; }
+  dem::Index row_of(dem::Index k) const { return dem::file_row(spec_.file_row, k); }
 
   const SceneSpec &spec_;
   SceneResult &result_;

@@ -17,6 +17,7 @@
 
 #include "continuum/numerical_failure.h"
 #include "dem/simulation.h"
+#include "dem/spatial_order.h"
 
 #include <nlohmann/json.hpp>
 
@@ -126,7 +127,7 @@ public:
   /// How the files name ball k: ids[k], its row in the user's particle file
   /// where the run renumbered the balls (dem/spatial_order.h); by default k.
   void set_ball_ids(std::vector<dem::Index> ids);
-  dem::Index ball_id(dem::Index ball) const { return ids_.empty() ? ball : ids_[ball]; }
+  dem::Index ball_id(dem::Index ball) const { return dem::file_row(ids_, ball); }
   /// Takes the simulation's new bond breaks into bond_breaks.csv (first <
   /// second, by ball_id) and the ParaView break log.
   void drain_breaks(dem::Simulation &sim);
