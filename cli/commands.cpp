@@ -223,7 +223,7 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
     throw DeckError("--cases '" + cases_dir +
                     "': not a directory: expected the folder of the case decks (default: " + default_cases_dir() + ")");
   const int used = apply_threads({"", threads, false});
-  CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads};
+  CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads, {}};
   std::vector<CheckRecord> records;
   try
   {

@@ -409,7 +409,7 @@ TEST_CASE("a count with a ceiling (--threads, a sweep's share) is governed up to
   share.most_threads = omp_get_num_procs() + 1000;
   CHECK(demvv::thread_ceiling(share) == omp_get_num_procs());
   // demvv verify --threads N: each run of a check starts on N, never more.
-  const demvv::RunOptions check = demvv::run_options(demvv::CheckContext{"", true, 3});
+  const demvv::RunOptions check = demvv::run_options(demvv::CheckContext{"", true, 3, {}});
   CHECK(check.threads == 3);
   CHECK(check.most_threads == 3);
 }
@@ -546,7 +546,7 @@ TEST_CASE("a check's sweep runs each member on at most verify's --threads", "[ru
 {
   // One: a ceiling no default (the cores of this machine) equals where there
   // are two cores or more.
-  const demvv::CheckContext ctx{"", true, 1};
+  const demvv::CheckContext ctx{"", true, 1, {}};
   demvv::SweepPlan plan;
   plan.base_deck = std::string(DEMVV_TEST_DATA) + "/small_lattice.prm";
   plan.keys = {"loading/final strain"};

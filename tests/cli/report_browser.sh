@@ -10,7 +10,9 @@
 # section drawn with at least one figure, every figure rendered at a
 # non-zero size (the page's own script marks each one), no figure missing,
 # a headline by V&V category with a banner (mode, date, commit, host, CPU),
-# and a screenshot that is not blank (pixels other than the background).
+# a scope, a sign-off block, every check folded and naming its case decks
+# with their standard FNV-1a 64, and a screenshot that is not blank (pixels
+# other than the background).
 #
 # usage: report_browser.sh DEMVV WORK_DIR
 set -eu
@@ -65,6 +67,36 @@ if not head or not re.search(r"code verification \d+/\d+ pass", head.group(1)):
 if not banner or not all(w in banner.group(1) for w in ("Quick mode", "commit", "Run ")):
     print("FAIL: no banner with mode, date and commit:", banner.group(1) if banner else "none")
     sys.exit(1)
+EOF
+# A signable page: the scope and intended use, a sign-off block with its
+# roles, every check folded in a <details> (open when it fails) that names
+# its case decks, and each case deck's hash the standard FNV-1a 64 of the
+# deck's text (recomputed here from the file).
+python3 - "$work/dom.html" "$(dirname "$0")/../../cases" <<'EOF' || fail=1
+import re, sys
+dom, cases = open(sys.argv[1], encoding="utf-8").read(), sys.argv[2]
+for needed in ("Scope and intended use", 'id="sign-off"', "reviewed by", "approved by"):
+    if needed not in dom:
+        print("FAIL: the page lacks", repr(needed)); sys.exit(1)
+parts = dom.split('<section class="check"')[1:]
+for p in parts:
+    part = p.split("</section>")[0]
+    ident = re.search(r'id="([^"]+)"', p).group(1)
+    folded = re.search(r"<details( open)?", part)
+    failing = 'class="fail">FAIL' in part.split("</summary>")[0]
+    if not folded or bool(folded.group(1)) != failing:
+        print("FAIL: %s is not folded as its verdict asks (open only when it fails)" % ident); sys.exit(1)
+    if "Case decks</dt>" not in part:
+        print("FAIL: %s does not name its case decks" % ident); sys.exit(1)
+hashes = re.findall(r"([\w.]+/case\.prm) \(FNV-1a 64 ([0-9a-f]{16})\)", dom)
+if not hashes:
+    print("FAIL: no case deck hash on the page"); sys.exit(1)
+for path, shown in hashes:
+    h = 14695981039346656037
+    for b in open(cases + "/" + path, "rb").read():
+        h = ((h ^ b) * 1099511628211) % 2**64
+    if "%016x" % h != shown:
+        print("FAIL: %s's hash %s is not the FNV-1a 64 of its text (%016x)" % (path, shown, h)); sys.exit(1)
 EOF
 # Every check section holds a rendered figure.
 python3 - "$work/dom.html" <<'EOF' || fail=1

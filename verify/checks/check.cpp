@@ -1,9 +1,12 @@
 #include "verify/checks/check.h"
 
+#include "app/io/output.h"
 #include "build_info.h"
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace demvv
 {
@@ -118,6 +121,10 @@ std::string CheckContext::case_deck(const std::string &name) const
   const std::string deck = cases_dir + "/" + name + "/case.prm";
   if (!std::filesystem::is_regular_file(deck))
     throw MissingCaseDeck("the cases folder '" + cases_dir + "' has no " + name + "/case.prm");
+  std::ifstream in(deck, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  decks_read[name + "/case.prm"] = fnv1a_hex(text.str());
   return deck;
 }
 } // namespace demvv

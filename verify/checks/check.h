@@ -25,6 +25,7 @@
 #include "app/plot/figure.h"
 #include "app/reference/convergence.h"
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -96,8 +97,14 @@ struct CheckContext
   bool quick = true;     ///< fewer levels / shorter runs
   int threads = 0;       ///< demvv verify --threads: the most each run of a check uses (0: demvv's choice)
 
-  /// The deck of case `name` (cases_dir/name/case.prm); throws
-  /// MissingCaseDeck when the folder has none.
+  /// The case decks read while a check runs: the path under cases_dir and
+  /// the standard FNV-1a 64 of the file's text, for the report's provenance
+  /// (run_checks empties it before each check; decks a check writes in its
+  /// own code are part of the build, whose sources_sha256 the report states).
+  mutable std::map<std::string, std::string> decks_read;
+
+  /// The deck of case `name` (cases_dir/name/case.prm), recorded in
+  /// decks_read; throws MissingCaseDeck when the folder has none.
   std::string case_deck(const std::string &name) const;
 };
 

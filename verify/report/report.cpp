@@ -71,6 +71,45 @@ std::string banner(const nlohmann::json &provenance)
          field("cpu_model") + ").";
 }
 
+std::vector<std::string> report_scope(const nlohmann::json &provenance)
+{
+  std::vector<std::string> scope = {
+    "This report covers one build of demvv (its sources_sha256, compiler and flags are in the provenance below) "
+    "and the case decks named under each check, with the FNV-1a 64 of their text; decks a check writes in its own "
+    "code belong to the build. It verifies the DEM engine (linear, bonded and Burger's contacts, the "
+    "velocity-Verlet step, walls and platens, bond breakage, the measurement of stress and strain) and the "
+    "continuum companion (Burger's equations by CVODE, the deal.II viscoelastic cylinder) against closed forms, "
+    "observed orders and independent solvers; it estimates the numerical uncertainty of the bulk recipe (time "
+    "step, loading rate, seeds); and it calibrates the rate-temperature model of the thesis's Table 7.4 at one "
+    "condition and validates it at the others.",
+    "Intended use: evidence that demvv solves the equations its documentation states, for uniaxial compression "
+    "of bonded sphere packings within the parameter ranges of these checks. A signature below is for that use "
+    "only. Not covered: other loading paths (triaxial, shear, indirect tension), particles other than spheres, "
+    "rates and temperatures outside the law's range (0 to 20 C), and any claim about real asphalt beyond the "
+    "validation checks' conditions; a validation failure is a finding about the model, not about the code."};
+  if (provenance.value("mode", "quick") == "quick")
+    scope.push_back("This is a quick report: the bulk checks (time step, loading rate, seeds, calibration, "
+                    "validation) ran on small lattices, so it verifies their code paths, not the numerical "
+                    "uncertainty of thesis-size samples. Sign a report of demvv verify --full for that.");
+  return scope;
+}
+
+const char *const sign_off_statement =
+  "A signature attests that the signer has read each check's requirement, reference, tolerances and verdict in "
+  "this report, for the build and decks it names, and accepts them for the intended use stated above. It does "
+  "not extend to another build, another deck or another use.";
+const std::vector<const char *> sign_off_roles = {"prepared by", "reviewed by", "approved by"};
+
+std::string case_decks_text(const CheckRecord &record)
+{
+  if (record.decks.empty())
+    return "none read: its decks are written in the check's code (part of the build's sources_sha256)";
+  std::string text;
+  for (const auto &[path, hash] : record.decks)
+    text += (text.empty() ? "" : ", ") + path + " (FNV-1a 64 " + hash + ")";
+  return text;
+}
+
 std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &only, bool verbose)
 {
   std::vector<CheckRecord> out;
@@ -81,6 +120,7 @@ std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &
       continue;
     CheckRecord r;
     r.check = &c;
+    ctx.decks_read.clear();
     const auto start = std::chrono::steady_clock::now();
     try
     {
@@ -95,6 +135,7 @@ std::vector<CheckRecord> run_checks(const CheckContext &ctx, const std::string &
       r.error = e.what();
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.decks = ctx.decks_read;
     if (verbose)
       std::cerr << (r.pass() ? "PASS " : "FAIL ") << c.id << "  " << c.title << "  (" << report_number(r.seconds)
                 << " s)" << (r.error.empty() ? "" : "  error: " + r.error) << "\n";
@@ -146,6 +187,7 @@ nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohma
                       {"notes", r.outcome.notes},
                       {"error", r.error},
                       {"runtime_s", r.seconds},
+                      {"case_decks_fnv1a64", r.decks},
                       {"pass", r.pass()}});
   }
   return {{"checks", checks},
@@ -159,18 +201,21 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
   const Headline head = headline(records);
   o << "# demvv verification report\n\n"
     << "**" << head.text() << "** (" << head.counts() << ").\n\n"
-    << banner(provenance) << "\n\n"
-    << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
+    << banner(provenance) << "\n\n## Scope and intended use\n\n";
+  for (const std::string &paragraph : report_scope(provenance))
+    o << paragraph << "\n\n";
+  o << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
        "verification* (how accurate is this solution), *calibration* (parameters fitted to data) and "
        "*validation* (is it the right equation). Each metric has a tolerance class: A algebraic (round-off), "
        "B time-discretised (truncation and its order), C event-resolved (one step), D statistical (seeds); "
        "docs/verification_catalogue.md defines them.\n\n";
-  o << "## Requirements\n\n| id | requirement | classes | category | reference | verdict | runtime [s] |\n"
-    << "|---|---|---|---|---|---|---|\n";
+  o << "## Requirements\n\n| id | requirement | classes | category | reference | case decks | verdict | runtime [s] "
+       "|\n|---|---|---|---|---|---|---|---|\n";
   for (const CheckRecord &r : records)
     o << "| " << r.check->id << " | " << r.check->requirement << " | "
       << tolerance_class_list(r.check->tolerance_classes) << " | " << category_name(r.check->category) << " | "
-      << r.check->reference << " | " << (r.pass() ? "PASS" : "**FAIL**") << " | " << report_number(r.seconds) << " |\n";
+      << r.check->reference << " | " << case_decks_text(r) << " | " << (r.pass() ? "PASS" : "**FAIL**") << " | "
+      << report_number(r.seconds) << " |\n";
   o << "\n## Metrics\n\n| id | metric | class | value | tolerance | verdict | why this tolerance |\n"
     << "|---|---|---|---|---|---|---|\n";
   for (const CheckRecord &r : records)
@@ -204,6 +249,9 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
       any_note = true;
       o << "- **" << r.check->id << "**: " << n << "\n";
     }
+  o << "\n## Sign-off\n\n" << sign_off_statement << "\n\n| role | name | date | signature |\n|---|---|---|---|\n";
+  for (const char *role : sign_off_roles)
+    o << "| " << role << " | | | |\n";
   o << "\n## Provenance\n\n```json\n" << json_text(provenance, 2) << "\n```\n";
   return o.str();
 }

@@ -34,6 +34,7 @@ struct CheckRecord
   CheckOutcome outcome;
   double seconds = 0;
   std::string error; ///< set when the check threw instead of returning
+  std::map<std::string, std::string> decks; ///< case decks it read: path under the cases folder -> FNV-1a 64
   bool pass() const { return error.empty() && outcome.pass(); }
 };
 
@@ -65,6 +66,16 @@ Headline headline(const std::vector<CheckRecord> &records);
 /// The line under the headline: the mode (quick: what it leaves out), the
 /// date, the commit, the host and its CPU, from the report's provenance.
 std::string banner(const nlohmann::json &provenance);
+
+/// What the report covers and what a signature on it is for: the build and
+/// decks, what is verified, the intended use, what is left out, and in
+/// quick mode what the small lattices cannot show.  One paragraph each.
+std::vector<std::string> report_scope(const nlohmann::json &provenance);
+/// What a signature in the sign-off block attests, and its roles.
+extern const char *const sign_off_statement;
+extern const std::vector<const char *> sign_off_roles;
+/// The case decks a check read with their FNV-1a 64, or what stands for them.
+std::string case_decks_text(const CheckRecord &record);
 
 nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);
 std::string report_markdown(const std::vector<CheckRecord> &records, const nlohmann::json &provenance);

@@ -85,6 +85,8 @@ double margin(const Metric &m)
 
 const char *figure_check_script = R"(
 window.addEventListener('load', function () {
+  var closed = document.querySelectorAll('details:not([open])');
+  closed.forEach(function (d) { d.open = true; });
   var figures = document.querySelectorAll('img.figure'), broken = 0;
   figures.forEach(function (img) {
     var box = img.getBoundingClientRect();
@@ -98,6 +100,7 @@ window.addEventListener('load', function () {
       img.parentNode.insertBefore(note, img.nextSibling);
     }
   });
+  closed.forEach(function (d) { d.open = false; });
   document.body.setAttribute('data-figures', String(figures.length));
   document.body.setAttribute('data-figures-broken', String(broken));
 });
@@ -114,7 +117,10 @@ figure { margin: 1em 0; }
 img.figure { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption, .missing, .broken { font-size: 0.9em; color: #555; }
 .missing, .broken { color: #b00020; }
-section.check { border-top: 2px solid #ddd; margin-top: 2em; }
+section.check { border-top: 2px solid #ddd; margin-top: 1em; }
+summary { cursor: pointer; }
+summary h3 { display: inline; }
+table.signoff td { min-width: 10em; height: 2em; }
 dl.facts dt { font-weight: bold; float: left; clear: left; width: 9em; }
 dl.facts dd { margin-left: 10em; }
 pre { background: #f7f7f7; padding: 0.5em; overflow-x: auto; font-size: 0.8em; }
@@ -189,12 +195,14 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
   {
     const CheckRecord &r = records[n];
     const Check &c = *r.check;
-    body << "<section class=\"check\" id=\"" << html_escaped(c.id) << "\">\n<h3>" << html_escaped(c.id) << ": "
-         << html_escaped(c.title) << " — " << verdict(r.pass()) << "</h3>\n<dl class=\"facts\">\n"
+    body << "<section class=\"check\" id=\"" << html_escaped(c.id) << "\">\n<details" << (r.pass() ? "" : " open")
+         << ">\n<summary><h3>" << html_escaped(c.id) << ": " << html_escaped(c.title) << " — " << verdict(r.pass())
+         << "</h3></summary>\n<dl class=\"facts\">\n"
          << "<dt>Requirement</dt><dd>" << html_escaped(c.requirement) << "</dd>\n"
          << "<dt>Reference</dt><dd>" << html_escaped(c.reference) << "</dd>\n"
          << "<dt>Category</dt><dd>" << html_escaped(category_name(c.category)) << "</dd>\n"
          << "<dt>Tolerance classes</dt><dd>" << html_escaped(tolerance_class_list(c.tolerance_classes)) << "</dd>\n"
+         << "<dt>Case decks</dt><dd>" << html_escaped(case_decks_text(r)) << "</dd>\n"
          << "<dt>Run time</dt><dd>" << report_number(r.seconds) << " s</dd>\n</dl>\n";
     if (!r.error.empty())
       body << "<p class=\"fail\">The check stopped: " << html_escaped(r.error) << "</p>\n";
@@ -232,7 +240,7 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
         body << "<li>" << html_escaped(n) << "</li>\n";
       body << "</ul>\n";
     }
-    body << "</section>\n";
+    body << "</details>\n</section>\n";
   }
 
   const Headline head = headline(records);
@@ -243,7 +251,10 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
     << "\">\n<h1>demvv verification report</h1>\n<p id=\"headline\" class=\"" << (head.code_failures ? "fail" : "pass")
     << "\"><b>" << html_escaped(head.text()) << "</b> (" << head.counts() << ").</p>\n"
     << "<p id=\"banner\">" << html_escaped(banner(provenance)) << "</p>\n"
-    << "<h2>Verdicts</h2>\n<table>\n<tr><th>id</th><th>check</th><th>category</th><th>classes</th><th>verdict</th>"
+    << "<h2>Scope and intended use</h2>\n";
+  for (const std::string &paragraph : report_scope(provenance))
+    o << "<p>" << html_escaped(paragraph) << "</p>\n";
+  o << "<h2>Verdicts</h2>\n<table>\n<tr><th>id</th><th>check</th><th>category</th><th>classes</th><th>verdict</th>"
        "<th>run time [s]</th></tr>\n";
   for (const CheckRecord &r : records)
     o << "<tr><td><a href=\"#" << html_escaped(r.check->id) << "\">" << html_escaped(r.check->id) << "</a></td><td>"
@@ -257,10 +268,15 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
       << "</dd>\n";
   for (ToleranceClass t : {ToleranceClass::A, ToleranceClass::B, ToleranceClass::C, ToleranceClass::D})
     o << "<dt><b>class " << tolerance_class_letter(t) << " (" << html_escaped(tolerance_class_name(t))
-      << ")</b></dt><dd>" << html_escaped(tolerance_class_limit(t)) << " " << html_escaped(tolerance_class_rule(t))
-      << " " << html_escaped(tolerance_class_reasoning(t)) << "</dd>\n";
-  o << "</dl>\n<h2>Checks</h2>\n"
-    << body.str() << "<h2>Provenance</h2>\n<pre>" << html_escaped(json_text(provenance, 2)) << "</pre>\n<script>"
+      << ")</b></dt><dd><i>What limits it:</i> " << html_escaped(tolerance_class_limit(t))
+      << ".<br><i>Rule:</i> " << html_escaped(tolerance_class_rule(t)) << ".<br><i>Why:</i> "
+      << html_escaped(tolerance_class_reasoning(t)) << "</dd>\n";
+  o << "</dl>\n<h2>Checks</h2>\n<p>Each check folds: its title opens it. Checks that fail are open.</p>\n"
+    << body.str() << "<h2 id=\"sign-off\">Sign-off</h2>\n<p>" << html_escaped(sign_off_statement) << "</p>\n"
+    << "<table class=\"signoff\">\n<tr><th>role</th><th>name</th><th>date</th><th>signature</th></tr>\n";
+  for (const char *role : sign_off_roles)
+    o << "<tr><td>" << role << "</td><td></td><td></td><td></td></tr>\n";
+  o << "</table>\n<h2>Provenance</h2>\n<pre>" << html_escaped(json_text(provenance, 2)) << "</pre>\n<script>"
     << figure_check_script << "</script>\n</body>\n</html>\n";
   return o.str();
 }
