@@ -6,7 +6,7 @@
 namespace demvv
 {
 void add_order_study(Figure &figure, const std::string &label, const std::vector<double> &h,
-                     const std::vector<double> &error, double expected_order)
+                     const std::vector<double> &error, double expected_order, const std::string &reference_label)
 {
   std::vector<double> hs, es;
   for (std::size_t k = 0; k < h.size() && k < error.size(); ++k)
@@ -28,8 +28,8 @@ void add_order_study(Figure &figure, const std::string &label, const std::vector
   for (double x : hs)
     reference.push_back(es[finest] * std::pow(x / hs[finest], expected_order));
   char order[32];
-  std::snprintf(order, sizeof order, "%g", expected_order);
-  figure.curves.push_back(curve("order " + std::string(order) + " (theory)", hs, reference, CurveStyle::dashed));
+  std::snprintf(order, sizeof order, "%.3g", expected_order);
+  figure.curves.push_back(curve("order " + std::string(order) + " (" + reference_label + ")", hs, reference, CurveStyle::dashed));
   figure.curves.back().colour = colour;
 }
 

@@ -22,9 +22,11 @@
 
 namespace demvv
 {
-/// Adds one study (levels in any order) to a log-log figure.
+/// Adds one study (levels in any order) to a log-log figure; the dashed
+/// line is labelled "order p (reference_label)".
 void add_order_study(Figure &figure, const std::string &label, const std::vector<double> &h,
-                     const std::vector<double> &error, double expected_order);
+                     const std::vector<double> &error, double expected_order,
+                     const std::string &reference_label = "theory");
 
 struct GciLevels
 {

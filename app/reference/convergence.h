@@ -24,6 +24,21 @@ struct ConvergenceTable
   std::string h_name;     ///< e.g. "dt [s]"
   std::string error_name; ///< e.g. "max |u - u_exact| [m]"
   double expected_order = 0;
+  /// What expected_order is, and so what the figure's dashed line claims:
+  /// the theoretical order (the default); an order fitted to these same
+  /// points (no theory gives one, so the line is labelled fitted); the
+  /// slowest decay the check accepts (a bound, not a prediction); or none:
+  /// the scheme reproduces the quantity exactly, its errors are round-off
+  /// and are drawn against roundoff_bound, the bound the check holds them to.
+  enum class Reference
+  {
+    theory,
+    fitted,
+    least,
+    roundoff
+  };
+  Reference reference = Reference::theory;
+  double roundoff_bound = 0;
   std::vector<ConvergenceRow> rows;
 
   /// Appends a level and computes its observed order from the previous one.

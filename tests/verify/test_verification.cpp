@@ -16,6 +16,7 @@
 #include "tests/verify/check_test.h"
 #include "verify/checks/catalogue.h"
 #include "verify/checks/check.h"
+#include "verify/report/report.h"
 
 #include <catch2/catch.hpp>
 
@@ -30,7 +31,7 @@ void demvv_test::require_check(std::string_view id)
 {
   const demvv::Check *check = demvv::find_check(id);
   REQUIRE(check != nullptr);
-  const demvv::CheckOutcome outcome = check->run({demvv::default_cases_dir(), true});
+  const demvv::CheckOutcome outcome = check->run({demvv::default_cases_dir(), true, 0, {}});
   REQUIRE_FALSE(outcome.metrics.empty());
   const std::set<demvv::ToleranceClass> declared(check->tolerance_classes.begin(), check->tolerance_classes.end());
   std::set<demvv::ToleranceClass> used;
@@ -106,4 +107,42 @@ TEST_CASE("the committed verification catalogue is what the registry generates",
     }
   }
   CHECK(committed.str() == generated);
+}
+
+TEST_CASE("a convergence figure says what its dashed line is", "[verify][report]")
+{
+  // Three tables of one synthetic outcome: a theoretical order, an order
+  // fitted to the same points, and errors at round-off level (no order).
+  demvv::CheckRecord record;
+  record.check = demvv::find_check("V21");
+  REQUIRE(record.check != nullptr);
+  using Reference = demvv::ConvergenceTable::Reference;
+  for (Reference reference : {Reference::theory, Reference::fitted, Reference::roundoff})
+  {
+    demvv::ConvergenceTable t;
+    t.title = "study";
+    t.expected_order = reference == Reference::roundoff ? 0 : 2;
+    t.reference = reference;
+    t.roundoff_bound = 1e-9;
+    for (double h : {0.4, 0.2, 0.1})
+      t.add(h, reference == Reference::roundoff ? 3e-16 / h : h * h);
+    record.outcome.tables.push_back(t);
+  }
+  const std::vector<demvv::Figure> figures = demvv::check_figures(record);
+  REQUIRE(figures.size() >= 3);
+  const auto titles = [](const demvv::Figure &f)
+  {
+    std::string all;
+    for (const demvv::Curve &c : f.curves)
+      all += c.title + "; ";
+    return all;
+  };
+  CHECK(titles(figures[0]).find("order 2 (theory)") != std::string::npos);
+  CHECK(titles(figures[1]).find("order 2 (fitted to these points)") != std::string::npos);
+  CHECK(titles(figures[1]).find("theory") == std::string::npos);
+  // Round-off: the errors against the check's bound, never an order.
+  CHECK(titles(figures[2]).find("round-off bound of the check") != std::string::npos);
+  CHECK(titles(figures[2]).find("order 0") == std::string::npos);
+  CHECK(titles(figures[2]).find("theory") == std::string::npos);
+  CHECK(demvv::reference_text(record.outcome.tables[2]) == "no order: exact up to round-off, bound 1e-09");
 }

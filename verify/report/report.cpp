@@ -12,6 +12,22 @@ namespace demvv
 {
 std::string report_number(double v) { return format_number(v, 3); }
 
+std::string reference_text(const ConvergenceTable &t)
+{
+  switch (t.reference)
+  {
+  case ConvergenceTable::Reference::fitted:
+    return "order " + report_number(t.expected_order) + " fitted to these points, which no theory gives";
+  case ConvergenceTable::Reference::least:
+    return "at least order " + report_number(t.expected_order) + ", the slowest decay the check accepts";
+  case ConvergenceTable::Reference::roundoff:
+    return "no order: exact up to round-off, bound " + report_number(t.roundoff_bound);
+  case ConvergenceTable::Reference::theory:
+    break;
+  }
+  return "theoretical order " + report_number(t.expected_order);
+}
+
 Headline headline(const std::vector<CheckRecord> &records)
 {
   Headline h;
@@ -169,6 +185,7 @@ nlohmann::json report_json(const std::vector<CheckRecord> &records, const nlohma
                         {"h", t.h_name},
                         {"error", t.error_name},
                         {"expected_order", t.expected_order},
+                        {"reference", reference_text(t)},
                         {"levels", rows}});
     }
     nlohmann::json classes = nlohmann::json::array();
@@ -234,7 +251,7 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
       if (!any_table)
         o << "\n## Convergence studies\n";
       any_table = true;
-      o << "\n### " << r.check->id << ": " << t.title << " (expected order " << t.expected_order << ")\n\n"
+      o << "\n### " << r.check->id << ": " << t.title << " (" << reference_text(t) << ")\n\n"
         << "| level | " << t.h_name << " | " << t.error_name << " | observed order |\n|---|---|---|---|\n";
       for (std::size_t k = 0; k < t.rows.size(); ++k)
         o << "| " << k << " | " << report_number(t.rows[k].h) << " | " << report_number(t.rows[k].error) << " | "

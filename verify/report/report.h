@@ -82,6 +82,10 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
 
 /// A number as every report prints it: format_number at three significant digits.
 std::string report_number(double v);
+/// What a convergence table's expected order is, in words: "theoretical
+/// order 2", "order 1.53 fitted to these points", "at least order 2", or
+/// "no order: exact up to round-off (bound 1e-09)".
+std::string reference_text(const ConvergenceTable &table);
 
 /// The figures of one check in report.html (names start with the check's id).
 std::vector<Figure> check_figures(const CheckRecord &record);

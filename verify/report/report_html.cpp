@@ -150,9 +150,31 @@ std::vector<Figure> check_figures(const CheckRecord &r)
       h.push_back(row.h);
       e.push_back(row.error);
     }
-    add_order_study(f, "observed (last order " + report_number(t.last_order()) + ")", h, e, t.expected_order);
-    f.caption = "Errors of the study on log-log axes; the dashed line has the theoretical slope " +
-                report_number(t.expected_order) + " through the finest level.";
+    using Reference = ConvergenceTable::Reference;
+    if (t.reference == Reference::roundoff)
+    {
+      add_order_study(f, "error (round-off, no order)", h, e, 0);
+      f.key = "below";
+      const auto [low, high] = std::minmax_element(h.begin(), h.end());
+      if (low != h.end())
+        f.curves.push_back(
+          curve("round-off bound of the check", {*low, *high}, {t.roundoff_bound, t.roundoff_bound}, CurveStyle::dashed));
+      f.caption = "The scheme reproduces this quantity exactly, so what is left is round-off, not a truncation error: "
+                  "the errors are drawn against the bound the check holds them to, and no order is claimed (an "
+                  "observed order of round-off is noise). Exact zeros are not drawn.";
+    }
+    else
+    {
+      const bool theory = t.reference == Reference::theory;
+      add_order_study(f, "observed (last order " + report_number(t.last_order()) + ")", h, e, t.expected_order,
+                      theory ? "theory"
+                             : (t.reference == Reference::fitted ? "fitted to these points" : "the least accepted"));
+      f.caption = "Errors of the study on log-log axes; the dashed line is the " + reference_text(t) +
+                  ", drawn through the finest level." +
+                  (theory ? "" : t.reference == Reference::fitted
+                                   ? " It is fitted to the points it passes, so it shows the fit, not a prediction."
+                                   : " Errors that fall faster than the line pass: it is a bound, not a prediction.");
+    }
     out.push_back(std::move(f));
   }
   for (Figure f : r.outcome.figures)
