@@ -29,7 +29,8 @@ void add_order_study(Figure &figure, const std::string &label, const std::vector
     reference.push_back(es[finest] * std::pow(x / hs[finest], expected_order));
   char order[32];
   std::snprintf(order, sizeof order, "%.3g", expected_order);
-  figure.curves.push_back(curve("order " + std::string(order) + " (" + reference_label + ")", hs, reference, CurveStyle::dashed));
+  figure.curves.push_back(
+    curve("order " + std::string(order) + " (" + reference_label + ")", hs, reference, CurveStyle::dashed));
   figure.curves.back().colour = colour;
 }
 

@@ -1,5 +1,6 @@
 #include "app/reference/convergence.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace demvv
@@ -13,4 +14,12 @@ void ConvergenceTable::add(double h, double error)
 }
 
 double ConvergenceTable::last_order() const { return rows.size() < 2 ? 0.0 : rows.back().order; }
+
+double ConvergenceTable::largest_order_deviation(double expected) const
+{
+  if (rows.size() < 3)
+    return std::nan("");
+  const std::size_t n = rows.size();
+  return std::max(std::abs(rows[n - 1].order - expected), std::abs(rows[n - 2].order - expected));
+}
 } // namespace demvv

@@ -45,5 +45,9 @@ struct ConvergenceTable
   void add(double h, double error);
   /// Observed order of the last level (0 if fewer than two levels).
   double last_order() const;
+  /// The largest |observed - expected| order over the finest two halvings
+  /// (the last three levels): what tolerance class B holds; NaN with fewer
+  /// than three levels.
+  double largest_order_deviation(double expected) const;
 };
 } // namespace demvv

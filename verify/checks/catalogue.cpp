@@ -58,7 +58,10 @@ std::string_view tolerance_class_rule(ToleranceClass t)
            "condition number, n steps of rounding)";
   case ToleranceClass::B:
     return "error at most a stated bound at the production step or mesh, and an observed order within 0.1 of the "
-           "theoretical one over at least three halvings";
+           "theoretical one at each of the two finest halvings (a check may ask less than 0.1). Two variants, each "
+           "named in its metric's reason: where theory gives only a range of orders (a singular corner) the "
+           "observed order must lie in that range, and where it gives only the slowest decay (a quadrature of a "
+           "piecewise-smooth integrand) the errors must fall at least that fast";
   case ToleranceClass::C:
     return "error at most one step's worth of the measured quantity (v dt, dt / t_c, K v dt); no order claimed";
   case ToleranceClass::D:

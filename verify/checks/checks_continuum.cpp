@@ -48,16 +48,6 @@ CylinderResult cylinder_case(const CheckContext &ctx, const std::string &name,
   return r;
 }
 
-/// The largest |observed - expected| order over the finest three levels of
-/// a table (its last two orders); NaN with fewer than three levels.
-double worst_order_deviation(const ConvergenceTable &t, double expected)
-{
-  if (t.rows.size() < 3)
-    return std::nan("");
-  const std::size_t n = t.rows.size();
-  return std::max(std::abs(t.rows[n - 1].order - expected), std::abs(t.rows[n - 2].order - expected));
-}
-
 std::string setting(const std::string &key, double value) { return key + "=" + num(value); }
 
 // An affine displacement is exact in every Q_p mesh (isoparametric
@@ -382,7 +372,7 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
             "trapezoidal time error ~ (dt/tau)^2/12 for the shortest contact time tau = " + num(tau) + " s, times 10"));
     out.metrics.push_back(bound(std::string(route.label) + ": largest |observed order in dt - 2| over the finest "
                                                            "three steps",
-                                worst_order_deviation(t, 2), 0.1, false, ToleranceClass::B,
+                                t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
                                 "the trapezoidal update is second order (within 0.1 over 3 halvings)"));
     // With one shape in shear and bulk the scheme keeps eps_r = -nu eps_a
     // exactly; what is left is the CG solver's residual (1e-12).
@@ -494,7 +484,7 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
     out.metrics.push_back(bound(tag + "radial strain error against the closed form at the deck's step", radial, 1e-3,
                                 false, ToleranceClass::B, budget));
     out.metrics.push_back(bound(tag + "largest |observed order in dt - 2| over the finest three steps",
-                                worst_order_deviation(t, 2), 0.1, false, ToleranceClass::B,
+                                t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
                                 "the trapezoidal update is second order (within 0.1 over 3 halvings)"));
   }
   return out;
@@ -539,11 +529,11 @@ CheckOutcome check_manufactured_solutions(const CheckContext &ctx)
       const bool displacement = k < 2;
       if (space && k < 3)
         out.metrics.push_back(bound(t.title + ": largest |observed - expected order| over the finest three levels",
-                                    worst_order_deviation(t, t.expected_order), 0.1, false, ToleranceClass::B,
+                                    t.largest_order_deviation(t.expected_order), 0.1, false, ToleranceClass::B,
                                     "Q_p theory (L2 p+1, H1 and stress p), within 0.1"));
       else if (!space && !displacement)
         out.metrics.push_back(bound(t.title + ": largest |observed order - 2| over the finest three steps",
-                                    worst_order_deviation(t, 2), 0.1, false, ToleranceClass::B,
+                                    t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
                                     "trapezoidal update, order 2 within 0.1"));
       else if (!space)
       {

@@ -33,7 +33,7 @@ struct CheckRecord
   const Check *check = nullptr;
   CheckOutcome outcome;
   double seconds = 0;
-  std::string error; ///< set when the check threw instead of returning
+  std::string error;                        ///< set when the check threw instead of returning
   std::map<std::string, std::string> decks; ///< case decks it read: path under the cases folder -> FNV-1a 64
   bool pass() const { return error.empty() && outcome.pass(); }
 };

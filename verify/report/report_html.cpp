@@ -157,8 +157,8 @@ std::vector<Figure> check_figures(const CheckRecord &r)
       f.key = "below";
       const auto [low, high] = std::minmax_element(h.begin(), h.end());
       if (low != h.end())
-        f.curves.push_back(
-          curve("round-off bound of the check", {*low, *high}, {t.roundoff_bound, t.roundoff_bound}, CurveStyle::dashed));
+        f.curves.push_back(curve("round-off bound of the check", {*low, *high}, {t.roundoff_bound, t.roundoff_bound},
+                                 CurveStyle::dashed));
       f.caption = "The scheme reproduces this quantity exactly, so what is left is round-off, not a truncation error: "
                   "the errors are drawn against the bound the check holds them to, and no order is claimed (an "
                   "observed order of round-off is noise). Exact zeros are not drawn.";
@@ -171,9 +171,10 @@ std::vector<Figure> check_figures(const CheckRecord &r)
                              : (t.reference == Reference::fitted ? "fitted to these points" : "the least accepted"));
       f.caption = "Errors of the study on log-log axes; the dashed line is the " + reference_text(t) +
                   ", drawn through the finest level." +
-                  (theory ? "" : t.reference == Reference::fitted
-                                   ? " It is fitted to the points it passes, so it shows the fit, not a prediction."
-                                   : " Errors that fall faster than the line pass: it is a bound, not a prediction.");
+                  (theory ? ""
+                   : t.reference == Reference::fitted
+                     ? " It is fitted to the points it passes, so it shows the fit, not a prediction."
+                     : " Errors that fall faster than the line pass: it is a bound, not a prediction.");
     }
     out.push_back(std::move(f));
   }
@@ -290,9 +291,9 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
       << "</dd>\n";
   for (ToleranceClass t : {ToleranceClass::A, ToleranceClass::B, ToleranceClass::C, ToleranceClass::D})
     o << "<dt><b>class " << tolerance_class_letter(t) << " (" << html_escaped(tolerance_class_name(t))
-      << ")</b></dt><dd><i>What limits it:</i> " << html_escaped(tolerance_class_limit(t))
-      << ".<br><i>Rule:</i> " << html_escaped(tolerance_class_rule(t)) << ".<br><i>Why:</i> "
-      << html_escaped(tolerance_class_reasoning(t)) << "</dd>\n";
+      << ")</b></dt><dd><i>What limits it:</i> " << html_escaped(tolerance_class_limit(t)) << ".<br><i>Rule:</i> "
+      << html_escaped(tolerance_class_rule(t)) << ".<br><i>Why:</i> " << html_escaped(tolerance_class_reasoning(t))
+      << "</dd>\n";
   o << "</dl>\n<h2>Checks</h2>\n<p>Each check folds: its title opens it. Checks that fail are open.</p>\n"
     << body.str() << "<h2 id=\"sign-off\">Sign-off</h2>\n<p>" << html_escaped(sign_off_statement) << "</p>\n"
     << "<table class=\"signoff\">\n<tr><th>role</th><th>name</th><th>date</th><th>signature</th></tr>\n";
