@@ -20,6 +20,12 @@ awk '/^```sh$/ {on = 1; next} /^```/ {on = 0} on' "$source/cases/course/README.m
   echo "FAIL: a command of the course failed:"; tail -20 "$work/course.log"; exit 1; }
 
 fail=0
+# Exercise 7's mutants are patches to the engine's sources: each must still
+# apply to this tree, or the exercise would plant nothing.
+for patch in "$source"/cases/course/mutants/*.patch; do
+  git -C "$source" apply --check "$patch" 2>/dev/null || {
+    echo "FAIL: exercise 7: the mutant $(basename "$patch") no longer applies to the sources (remake it)"; fail=1; }
+done
 expect() { # FILE PATTERN WHAT
   if ! grep -q -- "$2" "$work/$1" 2>/dev/null; then
     echo "FAIL: $3 ($1 lacks '$2')"; fail=1
