@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string_view>
 #include <system_error>
 
 #include <unistd.h>
@@ -74,6 +75,34 @@ std::string read_input(const std::string &path, const std::string &what, std::ui
   text.resize(static_cast<std::size_t>(in.gcount()));
   if (in.bad())
     throw DeckError(path + ": cannot read the " + what);
+  return as_utf8_text(std::move(text), path, what);
+}
+
+std::string as_utf8_text(std::string text, const std::string &path, const std::string &what)
+{
+  const auto starts = [&](std::string_view mark) { return text.compare(0, mark.size(), mark) == 0; };
+  using namespace std::string_view_literals;
+  const char *encoding = starts("\xFF\xFE\x00\x00"sv) || starts("\x00\x00\xFE\xFF"sv) ? "UTF-32"
+                         : starts("\xFF\xFE"sv) || starts("\xFE\xFF"sv)               ? "UTF-16"
+                                                                                      : nullptr;
+  if (encoding)
+    throw DeckError(path + ": the " + what + " is " + encoding +
+                    " text (its byte-order mark says so): expected UTF-8 or ASCII (save it as UTF-8)");
+  // ASCII in UTF-16 or UTF-32 without a byte-order mark: every other (or
+  // every fourth) byte of the first characters is NUL.  A stray NUL inside
+  // a value is left to the parser, which names its line and column.
+  if (text.size() >= 4 &&
+      ((text[0] != 0 && text[1] == 0 && text[3] == 0) || (text[0] == 0 && text[2] == 0 && text[1] != 0) ||
+       (text[0] == 0 && text[1] == 0 && text[3] != 0)))
+    throw DeckError(path + ": the " + what +
+                    " looks like UTF-16 or UTF-32 text without a byte-order mark (its first characters alternate with "
+                    "NUL bytes): expected UTF-8 or ASCII (save it as UTF-8)");
+  if (starts("\xEF\xBB\xBF"sv))
+    text.erase(0, 3); // the UTF-8 byte-order mark some editors write: the text itself is what is expected
+  if (text.find('\r') != std::string::npos && text.find('\n') == std::string::npos)
+    throw DeckError(path + ": the " + what +
+                    " ends its lines with carriage returns alone (classic Mac OS): expected LF or CRLF line ends "
+                    "(convert it with tr '\\r' '\\n')");
   return text;
 }
 

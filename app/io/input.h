@@ -37,6 +37,12 @@ constexpr int max_json_depth = 64;
 /// ("deck file", "sample file", "CSV file").  DeckError if it does not exist,
 /// cannot be read, is not a regular file or is larger than `max_bytes`.
 std::string read_input(const std::string &path, const std::string &what, std::uintmax_t max_bytes);
+/// The text of an input as demvv reads it: UTF-8 or ASCII with LF or CRLF
+/// line ends.  A UTF-8 byte-order mark is dropped; UTF-16 or UTF-32 text
+/// (by its byte-order mark, or NUL bytes between its first characters), and lines
+/// ended by carriage returns alone, are DeckError naming the encoding
+/// (read_input applies it to every file it reads).
+std::string as_utf8_text(std::string text, const std::string &path, const std::string &what);
 
 /// Parses JSON text read from `path`; DeckError naming the file on a syntax
 /// error or nesting deeper than max_json_depth.
