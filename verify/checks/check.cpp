@@ -1,12 +1,11 @@
 #include "verify/checks/check.h"
 
+#include "app/io/input.h"
 #include "app/io/output.h"
 #include "build_info.h"
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace demvv
 {
@@ -121,10 +120,7 @@ std::string CheckContext::case_deck(const std::string &name) const
   const std::string deck = cases_dir + "/" + name + "/case.prm";
   if (!std::filesystem::is_regular_file(deck))
     throw MissingCaseDeck("the cases folder '" + cases_dir + "' has no " + name + "/case.prm");
-  std::ifstream in(deck, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  decks_read[name + "/case.prm"] = fnv1a_hex(text.str());
+  decks_read[name + "/case.prm"] = fnv1a_hex(read_input(deck, "case deck", max_deck_bytes));
   return deck;
 }
 } // namespace demvv
