@@ -90,8 +90,11 @@ struct LedgerLimits
   /// energy is measured), while S grows with the step count, so in the
   /// first steps the residual is of the order of S in any run (a third of
   /// S at step 2 of a pulled bond) and 5e-2 S at step 20 of a ramp.  A
-  /// runaway within them is stopped by the runaway and motion checks.
-  long residual_from_step = 100;
+  /// runaway within them is stopped by the runaway and motion checks.  Held
+  /// from step 100 before, an undamped free pair meeting at the default
+  /// step (rebound energy 143 % above the impact's) finished in 66 steps
+  /// and passed; no run of the tests comes within the bound from step 20.
+  long residual_from_step = 20;
 };
 
 /// A numerical fault: NaN, runaway motion, unstable fixed step.

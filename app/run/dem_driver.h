@@ -110,6 +110,7 @@ public:
 private:
   double steps_per_period_ = inf;
   double smallest_bound_ = inf;
+  double damping_factor_ = 1; ///< sqrt(1 + local damping) of the last observation
 };
 
 /// A series the run writes, and the file it streams to.
