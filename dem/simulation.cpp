@@ -117,17 +117,34 @@ namespace
 {
 /// The largest stability row bound of one contact with a ball's own
 /// stiffness [1/s^2] (real mass and inertia, so that held balls count too).
+/// Row bound of ball p against one fixed partner with its own stiffness [1/s^2].
+double lone_bound(const ParticleStore &P, Index p)
+{
+  const double own = std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p]));
+  return own / P.mass[p];
+}
+
 double lone_contact_bound(const ParticleStore &P)
 {
   double largest = 0;
   for (Index p = 0; p < P.size(); ++p)
-  {
-    const double own = std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p]));
-    largest = std::max(largest, own / P.mass[p]);
-  }
+    largest = std::max(largest, lone_bound(P, p));
   return largest;
 }
 } // namespace
+
+Index stiffest_ball(const ParticleStore &particles)
+{
+  Index stiffest = -1;
+  double largest = -1;
+  for (Index p = 0; p < particles.size(); ++p)
+    if (const double b = lone_bound(particles, p); !(b <= largest))
+    {
+      largest = b;
+      stiffest = p;
+    }
+  return stiffest;
+}
 
 double estimated_memory_bytes(double particles, int walls)
 {

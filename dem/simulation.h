@@ -166,6 +166,10 @@ double estimated_memory_bytes(double particles, int walls);
 /// step would be zero.
 double least_steps(const ParticleStore &particles, const SimulationSettings &settings, double duration);
 
+/// The ball whose lone contact sets that largest step (the largest own
+/// stiffness over mass; a NaN one first); -1 for no balls.
+Index stiffest_ball(const ParticleStore &particles);
+
 /// What a protocol may do at a step's force time (see StepHooks).
 struct ForceTimeAction
 {

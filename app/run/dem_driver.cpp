@@ -140,12 +140,28 @@ void check_reachable(const dem::Simulation &sim, const DemProtocol &protocol)
     }
     return;
   }
+  // Either side may be the mistake, the duration or the step: the message
+  // gives the step and what sets it beside the duration's key.
   const double years = seconds / 3.15576e7;
-  char text[200];
+  const dem::SimulationSettings &settings = sim.settings();
+  char step[320];
+  const dem::Index b = dem::stiffest_ball(sim.particles());
+  if (settings.fixed_time_step > 0 || b < 0)
+    std::snprintf(step, sizeof step, "the fixed step motion/fixed time step %.3g s", settings.fixed_time_step);
+  else
+  {
+    const dem::ParticleStore &P = sim.particles();
+    std::snprintf(step, sizeof step,
+                  "a step of at most %.3g s, motion/time step safety %.3g of the critical step of particle %lld "
+                  "(normal stiffness %.3g N/m, shear stiffness %.3g N/m, mass %.3g kg)",
+                  protocol.time_left(sim) / steps, settings.time_step_safety, static_cast<long long>(b), P.kn[b],
+                  P.ks[b], P.mass[b]);
+  }
+  char text[640];
   std::snprintf(text, sizeof text,
-                "the run would need at least %.3g steps (about %.3g years at 1e7 particle-steps/s): expected a run "
-                "of at most %.0e steps",
-                steps, years, max_run_steps);
+                "the run would need at least %.3g steps (about %.3g years at 1e7 particle-steps/s) at %s: expected a "
+                "run of at most %.0e steps",
+                steps, years, step, max_run_steps);
   protocol.refuse_duration(text);
 }
 

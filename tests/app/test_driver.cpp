@@ -103,6 +103,14 @@ TEST_CASE("a scene reports how many steps resolve the shortest contact period", 
   CHECK(s["contact_resolution"]["steps_per_shortest_contact_period"].get<double>() ==
         Approx(10 * dem::pi).epsilon(1e-9));
   CHECK_FALSE(s["contact_resolution"].contains("warning"));
+  // Local damping shortens the step by sqrt(1 + alpha) for stability, not
+  // the contact's period: the count grows by that factor.
+  deck.set("motion/local damping", "0.7");
+  fs::remove_all(dir);
+  demvv::run_scene(deck, {dir.string(), 0, false});
+  s = read_json(dir / "summary.json");
+  CHECK(s["contact_resolution"]["steps_per_shortest_contact_period"].get<double>() ==
+        Approx(10 * dem::pi * std::sqrt(1.7)).epsilon(1e-9));
 }
 
 TEST_CASE("repeated deck sections: any number of instances, each named, in the order written", "[decks]")

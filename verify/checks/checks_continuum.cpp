@@ -373,7 +373,7 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
     out.metrics.push_back(bound(std::string(route.label) + ": largest |observed order in dt - 2| over the finest "
                                                            "three steps",
                                 t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
-                                "the trapezoidal update is second order (within 0.1 over 3 halvings)"));
+                                "the trapezoidal update is second order (within 0.1 at each of the two finest halvings)"));
     // With one shape in shear and bulk the scheme keeps eps_r = -nu eps_a
     // exactly; what is left is the CG solver's residual (1e-12).
     out.metrics.push_back(bound(std::string(route.label) + ": max |eps_r + nu eps_a| / max |nu eps_a|", radial, 1e-9,
@@ -485,7 +485,7 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
                                 false, ToleranceClass::B, budget));
     out.metrics.push_back(bound(tag + "largest |observed order in dt - 2| over the finest three steps",
                                 t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
-                                "the trapezoidal update is second order (within 0.1 over 3 halvings)"));
+                                "the trapezoidal update is second order (within 0.1 at each of the two finest halvings)"));
   }
   return out;
 }
