@@ -22,6 +22,9 @@ using nlohmann::json;
 
 json vec(const dem::Vec3 &v) { return json::array({v.x(), v.y(), v.z()}); }
 
+/// The units a sample file declares (and the only ones it may declare).
+constexpr const char *sample_units = "SI (m, kg, s, N, J); compression positive";
+
 const std::vector<std::string> ball_columns = {"x_m",
                                                "y_m",
                                                "z_m",
@@ -104,6 +107,24 @@ public:
     fail_key(path_, key, text, expected);
   }
 
+  /// Refuses a member of `object` (at `key`, "" for the top level) that is
+  /// not among `known`: a misspelt or foreign field would otherwise be
+  /// accepted and never read.
+  void only(const json &object, const std::string &key, std::initializer_list<const char *> known) const
+  {
+    if (!object.is_object())
+      return;
+    for (const auto &item : object.items())
+      if (std::find_if(known.begin(), known.end(), [&](const char *k) { return item.key() == k; }) == known.end())
+      {
+        std::string list;
+        for (const char *k : known)
+          list += (list.empty() ? "" : ", ") + std::string(k);
+        throw DeckError(path_ + ": key '" + (key.empty() ? "" : key + ".") + escaped(item.key().substr(0, 60)) +
+                        "' is not a field of a demvv sample file here: expected one of " + list);
+      }
+  }
+
   /// Member `name` of the object at `key` (missing: the one-line error).
   const json &member(const json &object, const std::string &key, const std::string &name,
                      const std::string &expected) const
@@ -180,6 +201,7 @@ public:
   const json &table(const json &doc, const std::string &name, const std::vector<std::string> &columns) const
   {
     const json &t = member(doc, "", name, "a {columns, rows} table: expected a demvv sample file");
+    only(t, name, {"columns", "rows"});
     const json &written = member(t, name, "columns", "the column names");
     if (!written.is_array() || written != json(columns))
     {
@@ -347,7 +369,7 @@ void write_sample(const std::string &path, const SampleFile &sample)
   const std::vector<std::string_view> &law_fields = sample_law(law_keyword, path).state_fields;
   json doc = {{"format", "demvv-sample"},
               {"format_version", format_version},
-              {"units", "SI (m, kg, s, N, J); compression positive"},
+              {"units", sample_units},
               {"title", sample.title},
               {"seed", sample.seed},
               {"contact_law", law_keyword},
@@ -455,6 +477,11 @@ SampleFile read_sample(const std::string &path)
   const int version =
     static_cast<int>(f.integer(f.member(doc, "", "format_version", "the format version"), "format_version", 1,
                                format_version, "a format version this demvv reads"));
+  f.only(doc, "",
+         {"format", "format_version", "units", "title", "seed", "contact_law", "cell", "preparation", "provenance",
+          "clock", "walls", "balls", "contacts", "wall_contacts"});
+  if (doc.contains("units") && doc["units"] != sample_units)
+    f.fail("units", doc["units"], std::string("expected \"") + sample_units + "\" (demvv reads and writes SI only)");
   SampleFile out;
   if (doc.contains("title"))
     out.title = f.text(doc["title"], "title");
@@ -483,6 +510,9 @@ SampleFile read_sample(const std::string &path)
   {
     const json &w = walls[k];
     const std::string key = "walls[" + std::to_string(k) + "]";
+    f.only(w, key,
+           {"name", "shape", "point_m", "direction", "radius_m", "velocity_mps", "radial_velocity_mps", "kn_npm",
+            "ks_npm", "friction", "enabled"});
     const auto at = [&](const char *name) -> const json & { return f.member(w, key, name, "a wall field"); };
     const auto sub = [&](const char *name) { return key + "." + name; };
     dem::Wall wall;
@@ -505,6 +535,7 @@ SampleFile read_sample(const std::string &path)
   }
 
   const json &cell = f.member(doc, "", "cell", "the cell (diameter, height and wall indices)");
+  f.only(cell, "cell", {"diameter_m", "height_m", "bottom", "top", "lateral"});
   const auto cell_at = [&](const char *name) -> const json & { return f.member(cell, "cell", name, "a cell field"); };
   const long long wall_count = static_cast<long long>(s.walls.size());
   out.cell.diameter = f.real(cell_at("diameter_m"), "cell.diameter_m", Sign::non_negative, "m");
@@ -592,6 +623,10 @@ SampleFile read_sample(const std::string &path)
   }
 
   const json &clock = f.member(doc, "", "clock", "the clock (time, steps and the energy ledger)");
+  f.only(clock, "clock",
+         {"time_s", "steps", "last_time_step_s", "initial_energy_j", "initial_recorded", "removed_wall_strain_j",
+          "removed_wall_friction_j", "bonds_broken_tension", "bonds_broken_shear", "bonds_broken_displacement",
+          "retired_friction_work_j", "retired_bond_energy_j"});
   const auto at = [&](const char *name) -> const json & { return f.member(clock, "clock", name, "a clock field"); };
   const auto real = [&](const char *name, Sign sign = Sign::any)
   { return f.real(at(name), std::string("clock.") + name, sign); };

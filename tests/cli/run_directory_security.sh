@@ -165,7 +165,8 @@ long=""
 [ $code -eq 143 ] && [ -f "$work/hup/checkpoint/driver.json" ] || fail "SIGHUP ended the run with $code, expected 143 and a checkpoint"
 # 7. Checkpoints that cannot lie: a series cut after the pause is refused
 # (never padded with NUL bytes), an input file changed after the pause is
-# refused, and a refused resume leaves the paused run's summary as it was.
+# refused, a checkpoint sample edited by hand is refused, and a refused
+# resume leaves the paused run's summary as it was.
 mkdir "$work/own"
 cp "$cases/v01_linear_impact/balls.csv" "$work/own/"
 sed "s|set file = .*balls.csv|set file = balls.csv|" "$work/r/deck.prm" > "$work/own/deck.prm"
@@ -183,6 +184,17 @@ sed -i '$ s/^\(.\)/9\1/' "$work/own/balls.csv"
 run "$work/own/deck.prm" --resume "$work/changed" 2>"$work/err"
 [ $? -eq 2 ] && grep -q "balls.csv changed since the run began" "$work/err" || fail "a resume on a changed input: $(cat "$work/err")"
 grep -q '"paused"' "$work/changed/summary.json" || fail "a refused resume lost the paused state"
+# A checkpoint whose sample was edited by hand (a ball moved) is refused.
+run "$work/own/deck.prm" --out "$work/moved" --pause-after 500 2>/dev/null || fail "the paused run to edit failed"
+python3 - "$work/moved/checkpoint/state.json" <<'EOF'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["balls"]["rows"][0][0] += 1e-6
+json.dump(d, open(sys.argv[1], "w"))
+EOF
+run "$work/own/deck.prm" --resume "$work/moved" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "the checkpoint recorded" "$work/err" || fail "a resume on an edited checkpoint: $(cat "$work/err")"
+one_line "$work/err" "an edited checkpoint"
 
 # 8. A resumed series is the run's own regular file and the checkpoint's
 # size ends a row after its header: a series replaced by a link to a file
