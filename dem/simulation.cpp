@@ -226,7 +226,8 @@ void Simulation::record_breaks()
   for (const BrokenBond &b : broken_)
   {
     const Contact &k = contacts_[b.contact];
-    breaks_.push_back({time_, k.first, k.second, b.mode, b.trial.normal, b.trial.shear});
+    const Vec3 midpoint = 0.5 * (particles_.position[k.first] + particles_.position[k.second]);
+    breaks_.push_back({time_, k.first, k.second, b.mode, b.trial.normal, b.trial.shear, midpoint});
     ++broken_count(b.mode);
   }
 }

@@ -54,6 +54,7 @@ struct BondBreak
   BreakMode mode = BreakMode::none;
   double normal_force = 0; ///< N, trial normal force at the break
   double shear_force = 0;  ///< N, trial shear force magnitude at the break
+  Vec3 point = Vec3::Zero(); ///< m, midpoint of the two centres at the break
 };
 
 /// What the energy ledger (energy.h) of a stable run can show, each part a

@@ -88,4 +88,83 @@ BandMeans contact_force_bands(const Simulation &sim, const CylinderBands &bands)
   }
   return band_means(bands, points, forces);
 }
+
+BandCounts band_counts(const std::array<double, CylinderBands::count> &observed,
+                       const std::array<double, CylinderBands::count> &weights)
+{
+  constexpr int B = CylinderBands::count;
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  BandCounts r;
+  r.observed = observed;
+  double events = 0, weight = 0;
+  for (int b = 0; b < B; ++b)
+  {
+    events += observed[b];
+    weight += weights[b];
+  }
+  int expected_bands = 0;
+  for (int b = 0; b < B; ++b)
+  {
+    r.expected[b] = weight > 0 ? events * weights[b] / weight : 0;
+    r.ratio_low[b] = r.ratio_high[b] = nan;
+    if (!(r.expected[b] > 0))
+      continue;
+    ++expected_bands;
+    const double o = observed[b];
+    r.chi_square += (o - r.expected[b]) * (o - r.expected[b]) / r.expected[b];
+    r.ratio_low[b] = (o > 0 ? 0.5 * gsl_cdf_chisq_Pinv(0.025, 2 * o) : 0.0) / r.expected[b];
+    r.ratio_high[b] = 0.5 * gsl_cdf_chisq_Pinv(0.975, 2 * o + 2) / r.expected[b];
+  }
+  r.degrees_of_freedom = std::max(0, expected_bands - 1);
+  if (r.degrees_of_freedom >= 1 && events > 0)
+    r.p_value = gsl_cdf_chisq_Q(r.chi_square, r.degrees_of_freedom);
+  return r;
+}
+
+std::array<double, CylinderBands::count> bonds_by_band(const Simulation &sim, const CylinderBands &bands)
+{
+  std::array<double, CylinderBands::count> held{};
+  const ParticleStore &p = sim.particles();
+  for (const Contact &k : sim.contacts().entries())
+    if (k.bonded)
+      held[bands.band(0.5 * (p.position[k.first] + p.position[k.second]))] += 1;
+  return held;
+}
+
+namespace
+{
+DirectionMean direction_mean(const std::vector<double> &values)
+{
+  DirectionMean d;
+  d.contacts = values.size();
+  if (values.empty())
+  {
+    d.mean = d.half_width = std::numeric_limits<double>::quiet_NaN();
+    return d;
+  }
+  double sum = 0, squares = 0;
+  for (double v : values)
+    sum += v;
+  d.mean = sum / double(values.size());
+  for (double v : values)
+    squares += (v - d.mean) * (v - d.mean);
+  const double n = double(values.size());
+  d.half_width = n > 1 ? 1.96 * std::sqrt(squares / (n - 1) / n) : std::numeric_limits<double>::quiet_NaN();
+  return d;
+}
+} // namespace
+
+ContactDirections contact_directions(const Simulation &sim, const Vec3 &axis)
+{
+  const Vec3 a = axis.normalized();
+  std::vector<double> compressive, tensile;
+  for (const Contact &k : sim.contacts().entries())
+  {
+    if (!k.state.touching() || k.state.normal_force == 0)
+      continue;
+    const double c = k.state.normal.dot(a);
+    (k.state.normal_force > 0 ? compressive : tensile).push_back(c * c);
+  }
+  return {direction_mean(compressive), direction_mean(tensile)};
+}
 } // namespace dem

@@ -62,4 +62,52 @@ BandMeans band_means(const CylinderBands &bands, const std::vector<Vec3> &points
 /// The compressive normal forces [N] of the touching ball-ball contacts at
 /// their contact points, by band.
 BandMeans contact_force_bands(const Simulation &sim, const CylinderBands &bands);
+
+/// Events counted by band (bond breaks, Figs 7.7 and A.3) against a uniform
+/// expectation: with w_b the share of the bonds that band held at the
+/// start, a break that strikes every bond alike gives E_b = w_b N of the N
+/// breaks.  X^2 = sum_b (O_b - E_b)^2 / E_b over the bands with E_b > 0,
+/// p = Q_chi2(X^2; B' - 1) (GSL), and each ratio O_b / E_b carries the
+/// exact (Garwood) 95 % Poisson interval of O_b,
+///
+///   [chi2_inv(0.025; 2 O_b) / 2, chi2_inv(0.975; 2 O_b + 2) / 2] / E_b.
+///
+/// Breaks come in cascades (a broken bond loads its neighbours), so they
+/// are not independent and p is optimistic (too small); the ratios with
+/// their intervals are the primary result.
+struct BandCounts
+{
+  std::array<double, CylinderBands::count> observed{};
+  std::array<double, CylinderBands::count> expected{};
+  std::array<double, CylinderBands::count> ratio_low{};  ///< 95 % bound of O_b / E_b (NaN where E_b = 0)
+  std::array<double, CylinderBands::count> ratio_high{}; ///< 95 % bound of O_b / E_b (NaN where E_b = 0)
+  double chi_square = 0;
+  int degrees_of_freedom = 0;
+  double p_value = 1; ///< 1 when fewer than two bands are expected to hold events, or none was observed
+};
+
+BandCounts band_counts(const std::array<double, CylinderBands::count> &observed,
+                       const std::array<double, CylinderBands::count> &weights);
+
+/// The bonded ball-ball contacts by band, at the midpoints of their centres.
+std::array<double, CylinderBands::count> bonds_by_band(const Simulation &sim, const CylinderBands &bands);
+
+/// Directions of the force-carrying ball-ball contacts (Fig. 7.4): the mean
+/// of (n . axis)^2 over the contacts in compression and over those in
+/// tension, each with its 95 % half-width 1.96 s / sqrt(n).  An isotropic
+/// set gives 1/3; contacts running mainly along the axis give more, mainly
+/// across it less.
+struct DirectionMean
+{
+  std::size_t contacts = 0;
+  double mean = 0;       ///< mean (n . axis)^2 [-] (NaN for no contact)
+  double half_width = 0; ///< 95 % half-width of the mean (NaN for fewer than two)
+};
+
+struct ContactDirections
+{
+  DirectionMean compressive, tensile;
+};
+
+ContactDirections contact_directions(const Simulation &sim, const Vec3 &axis);
 } // namespace dem

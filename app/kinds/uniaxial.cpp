@@ -9,6 +9,7 @@
 
 #include "dem/measure.h"
 #include "dem/protocol_uniaxial.h"
+#include "dem/spatial_bands.h"
 #include "dem/specimen.h"
 
 #include <algorithm>
@@ -232,6 +233,9 @@ Setup sample_setup(const UniaxialSpec &spec, bool progress)
   return s;
 }
 
+constexpr int band_count = dem::CylinderBands::count;
+using BandArray = std::array<double, band_count>;
+
 /// A uniaxial test as the DEM driver runs it: the platens move (thesis
 /// §6.1), rows record stress, strains, breakage, structure and energies.
 class UniaxialProtocol final : public DemProtocol
@@ -260,6 +264,30 @@ public:
     if (test_.scheduled())
       columns.push_back(history_.stress_controlled() ? "axial_stress_prescribed_pa" : "axial_strain_prescribed");
     series_ = Series(columns);
+    bonds_by_band_ = dem::bonds_by_band(sim, bands(sim));
+  }
+
+  /// Six bands of equal volume of the sample as it stands: between the
+  /// platens, about the axis through x = y = 0, of the cell's radius.
+  dem::CylinderBands bands(const dem::Simulation &sim) const
+  {
+    const dem::Wall &bottom = sim.walls()[cell_.bottom], &top = sim.walls()[cell_.top];
+    dem::CylinderBands b;
+    b.axis = bottom.direction.normalized();
+    b.base = b.axis * bottom.point.dot(b.axis);
+    b.height = (top.point - bottom.point).dot(b.axis);
+    b.radius = 0.5 * cell_.diameter;
+    return b;
+  }
+
+  void observe_breaks(const dem::Simulation &sim, const std::vector<dem::BondBreak> &breaks) override
+  {
+    if (breaks.empty())
+      return;
+    const dem::CylinderBands now = bands(sim);
+    for (const dem::BondBreak &b : breaks)
+      if (b.mode != dem::BreakMode::none)
+        breaks_by_band_[static_cast<int>(b.mode) - 1][now.band(b.point)] += 1;
   }
 
   /// The platens' schedule of the resolved loading.
@@ -319,7 +347,11 @@ public:
   void before_forces(dem::Simulation &sim) override { test_.before_forces(sim); }
   std::vector<double> checkpoint_values() const override
   {
-    return {test_.servo_integral(), servo_error_, servo_square_sum_, servo_rows_};
+    std::vector<double> v = {test_.servo_integral(), servo_error_, servo_square_sum_, servo_rows_};
+    v.insert(v.end(), bonds_by_band_.begin(), bonds_by_band_.end());
+    for (const BandArray &mode : breaks_by_band_)
+      v.insert(v.end(), mode.begin(), mode.end());
+    return v;
   }
   void restore_values(const std::vector<double> &values) override
   {
@@ -327,6 +359,12 @@ public:
     servo_error_ = values[1];
     servo_square_sum_ = values[2];
     servo_rows_ = values[3];
+    auto at = values.begin() + 4;
+    for (BandArray *counts : {&bonds_by_band_, &breaks_by_band_[0], &breaks_by_band_[1], &breaks_by_band_[2]})
+    {
+      std::copy(at, at + band_count, counts->begin());
+      at += band_count;
+    }
   }
   /// Simulated duration of the test [s].
   double duration() const { return history_.duration(); }
@@ -493,12 +531,67 @@ public:
         "not quasi-static: the inertial number reached " + format_number(inertial, 3) +
         " after the start-up (quasi-static well below " + format_number(quasi_static_inertial_number) +
         "), so the stresses hold a dynamic part; a slower platen or strain rate gives the quasi-static answer");
+    summary["spatial"] = spatial_json(sim);
     if (dir && !spec_.gauge_study.empty() && series_.rows() > 0)
       write_gauge_study(dir->path("gauge_study.csv"), series_, spec_.gauge_study, study_gauges_, convention());
     return summary;
   }
 
 private:
+  /// Where bonds broke and which way the contact forces run (Figs 7.4,
+  /// 7.7, A.3), as numbers (dem/spatial_bands.h).
+  nlohmann::json spatial_json(const dem::Simulation &sim) const
+  {
+    nlohmann::json names = nlohmann::json::array();
+    for (int b = 0; b < band_count; ++b)
+      names.push_back(dem::CylinderBands::name(b));
+    BandArray all{};
+    for (const BandArray &mode : breaks_by_band_)
+      for (int b = 0; b < band_count; ++b)
+        all[b] += mode[b];
+    const auto counts = [&](const BandArray &observed)
+    {
+      const dem::BandCounts c = dem::band_counts(observed, bonds_by_band_);
+      nlohmann::json ratio = nlohmann::json::array();
+      for (int b = 0; b < band_count; ++b)
+        ratio.push_back(c.expected[b] > 0 ? nlohmann::json({c.observed[b] / c.expected[b], c.ratio_low[b], c.ratio_high[b]})
+                                          : nlohmann::json(nullptr));
+      return nlohmann::json{{"observed", c.observed},
+                            {"expected_uniform", c.expected},
+                            {"ratio_and_95_interval", ratio},
+                            {"chi_square", c.chi_square},
+                            {"degrees_of_freedom", c.degrees_of_freedom},
+                            {"p_value", c.p_value}};
+    };
+    const dem::ContactDirections d = dem::contact_directions(sim, bands(sim).axis);
+    const auto direction = [](const dem::DirectionMean &m)
+    {
+      return nlohmann::json{{"contacts", m.contacts},
+                            {"mean_cos2_to_axis", std::isfinite(m.mean) ? nlohmann::json(m.mean) : nlohmann::json(nullptr)},
+                            {"half_width_95", std::isfinite(m.half_width) ? nlohmann::json(m.half_width) : nlohmann::json(nullptr)}};
+    };
+    return {{"bands", names},
+            {"bands_note", "six bands of equal volume: thirds of the height between the platens (bottom, middle, top) "
+                           "x core (r < R/sqrt(2)) and rim; a break counts in the band of the midpoint of its two "
+                           "balls at the break"},
+            {"bonds_installed_by_band", bonds_by_band_},
+            {"bond_breaks_by_band",
+             {{"all", counts(all)},
+              {"tension", counts(breaks_by_band_[0])},
+              {"shear", counts(breaks_by_band_[1])},
+              {"displacement", counts(breaks_by_band_[2])},
+              {"note", "expected_uniform: the breaks shared as the bonds were at the start (every bond struck alike); "
+                       "ratio observed/expected with the exact Poisson 95 % interval; chi-square against the uniform "
+                       "share (p optimistic: breaks come in cascades, not independently)"}}},
+            {"contact_directions_at_end",
+             {{"compressive", direction(d.compressive)},
+              {"tensile", direction(d.tensile)},
+              {"isotropic", 1.0 / 3.0},
+              {"note", "mean (n . axis)^2 of the ball-ball contacts carrying force at the end of the run, axis the "
+                       "bottom platen's normal, with its 95 % half-width; above 1/3 mainly along the axis, below "
+                       "across it"}}}};
+  }
+
   nlohmann::json loading_json() const
   {
     nlohmann::json j = {{"platen_speed_mps", test_.final_speed()},
@@ -536,6 +629,8 @@ private:
   double servo_error_ = 0; ///< creep: largest |top stress - hold stress| / hold stress during the hold
   double servo_square_sum_ = 0, servo_rows_ = 0; ///< creep: for the RMS of that error
   std::vector<double> row_;
+  BandArray bonds_by_band_{};                  ///< bonds each band held at the start
+  std::array<BandArray, 3> breaks_by_band_{}; ///< tension, shear, displacement breaks by band
 };
 } // namespace
 

@@ -65,7 +65,7 @@ public:
   {
     dem::ForceTimeAction action = protocol_.at_force_time(sim);
     resolution_.observe(sim);
-    files_.drain_breaks(sim);
+    protocol_.observe_breaks(sim, files_.drain_breaks(sim));
     last_ = protocol_.finished(sim);
     const double clock = protocol_.clock(sim);
     due_ = last_ || clock >= next_row_;

@@ -152,6 +152,8 @@ public:
   /// True when the test is about contact dynamics (impacts, waves): the
   /// driver then warns when the step resolves contact periods poorly.
   virtual bool resolves_contact_dynamics() const { return false; }
+  /// The bonds broken at this force time (positions at the break).
+  virtual void observe_breaks(const dem::Simulation & /*sim*/, const std::vector<dem::BondBreak> & /*breaks*/) {}
   /// The protocol's own state that the simulation does not hold (a servo's
   /// integral, a running maximum), kept bit for bit by checkpoints.
   virtual std::vector<double> checkpoint_values() const { return {}; }

@@ -379,11 +379,11 @@ void RunFiles::set_ball_ids(std::vector<dem::Index> ids)
     paraview_->set_ball_ids(ids_);
 }
 
-void RunFiles::drain_breaks(dem::Simulation &sim)
+std::vector<dem::BondBreak> RunFiles::drain_breaks(dem::Simulation &sim)
 {
-  const std::vector<dem::BondBreak> breaks = sim.take_breaks();
+  std::vector<dem::BondBreak> breaks = sim.take_breaks();
   if (breaks.empty())
-    return;
+    return breaks;
   if (breaks_)
     for (const dem::BondBreak &b : breaks)
     {
@@ -392,6 +392,7 @@ void RunFiles::drain_breaks(dem::Simulation &sim)
     }
   if (paraview_)
     paraview_->add_breaks(sim, breaks);
+  return breaks;
 }
 
 nlohmann::json RunFiles::checkpoint_state() const

@@ -129,8 +129,8 @@ public:
   void set_ball_ids(std::vector<dem::Index> ids);
   dem::Index ball_id(dem::Index ball) const { return dem::file_row(ids_, ball); }
   /// Takes the simulation's new bond breaks into bond_breaks.csv (first <
-  /// second, by ball_id) and the ParaView break log.
-  void drain_breaks(dem::Simulation &sim);
+  /// second, by ball_id) and the ParaView break log; returns them.
+  std::vector<dem::BondBreak> drain_breaks(dem::Simulation &sim);
 
   /// What a checkpoint records of these files (bond_breaks.csv length,
   /// ParaView state), and continuing from it.

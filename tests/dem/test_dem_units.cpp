@@ -295,6 +295,45 @@ TEST_CASE("six bands of equal volume and their analysis of variance", "[dem][mea
   CHECK(rising.mean[4] > rising.mean[0] + rising.half_width[4] + rising.half_width[0]);
 }
 
+TEST_CASE("band counts against a uniform share: chi-square, Poisson intervals, contact directions", "[dem][measure]")
+{
+  using Bands = std::array<double, dem::CylinderBands::count>;
+  // By hand: weights 1:1:2:2:0:0, 30 events seen as 10, 0, 10, 10, 0, 0.
+  // Expected 5, 5, 10, 10 (and 0, 0, left out): X^2 = 25/5 + 25/5 = 10 on
+  // 3 degrees of freedom.
+  const dem::BandCounts c = dem::band_counts(Bands{10, 0, 10, 10, 0, 0}, Bands{1, 1, 2, 2, 0, 0});
+  CHECK(c.expected == Bands{5, 5, 10, 10, 0, 0});
+  CHECK_THAT(c.chi_square, Catch::Matchers::WithinRel(10.0, 1e-14));
+  CHECK(c.degrees_of_freedom == 3);
+  CHECK_THAT(c.p_value, Catch::Matchers::WithinRel(gsl_cdf_chisq_Q(10.0, 3), 1e-14));
+  CHECK(std::isnan(c.ratio_low[4]));
+  // Exact Poisson 95 % bounds (Garwood; tabulated: 0 seen, [0, 3.689];
+  // 10 seen, [4.795, 18.39]), over the expectation.
+  CHECK(c.ratio_low[1] == 0);
+  CHECK_THAT(c.ratio_high[1] * 5, Catch::Matchers::WithinAbs(3.689, 1e-3));
+  CHECK_THAT(c.ratio_low[2] * 10, Catch::Matchers::WithinAbs(4.795, 1e-3));
+  CHECK_THAT(c.ratio_high[2] * 10, Catch::Matchers::WithinAbs(18.39, 1e-2));
+  // Counts in proportion to the weights: X^2 = 0, p = 1.
+  const dem::BandCounts even = dem::band_counts(Bands{3, 3, 6, 6, 9, 9}, Bands{1, 1, 2, 2, 3, 3});
+  CHECK(even.chi_square == 0);
+  CHECK(even.p_value == 1);
+
+  // Directions: a pair pressed together along z and a bonded pair pulled
+  // apart along x; (n . z)^2 is 1 for the first, 0 for the second.
+  dem::ParticleStore p;
+  for (const dem::Vec3 &at : {dem::Vec3(0, 0, 0), dem::Vec3(0, 0, 1.9e-3), dem::Vec3(1, 0, 0), dem::Vec3(1.002001, 0, 0)})
+    p.add(dem::small_systems::ball(at, 1e-3, 1e6, 1e5, 0.5));
+  auto sim = demtest::make_sim(std::move(p));
+  sim.refresh_contacts();
+  dem::bond_pair(sim.contacts(), sim.particles(), 2, 3, 1e6, 1e6);
+  sim.compute_forces();
+  const dem::ContactDirections d = dem::contact_directions(sim, dem::Vec3::UnitZ());
+  CHECK(d.compressive.contacts == 1);
+  CHECK_THAT(d.compressive.mean, Catch::Matchers::WithinAbs(1.0, 1e-15));
+  CHECK(d.tensile.contacts == 1);
+  CHECK_THAT(d.tensile.mean, Catch::Matchers::WithinAbs(0.0, 1e-15));
+}
+
 TEST_CASE("a test stops when its platens close on no sample or a contact overlaps beyond half a radius",
           "[dem][protocol]")
 {
