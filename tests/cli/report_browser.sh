@@ -12,7 +12,8 @@
 # a headline by V&V category with a banner (mode, date, commit, host, CPU),
 # a scope, a sign-off block, every check folded and naming its case decks
 # with their standard FNV-1a 64, and a screenshot that is not blank (pixels
-# other than the background).
+# other than the background); then V25's own page, with its validation band
+# and its uncertainty budget drawn.
 #
 # usage: report_browser.sh DEMVV WORK_DIR
 set -eu
@@ -150,6 +151,29 @@ if share < 0.01:
     print("FAIL: the screenshot is blank (%.4f of pixels differ from the background)" % share)
     sys.exit(1)
 print("screenshot: %.1f %% of pixels drawn" % (100 * share))
+EOF
+
+# The validation check's page (V25, its own report: a pattern selects one
+# set of checks): the comparison with its 2 u_val band and the uncertainty
+# budget part by part are drawn at a non-zero size.
+"$demvv" verify --quick --only V25 --threads 1 --out "$work/validation" > "$work/validation.log" 2>&1 || {
+  echo "FAIL: demvv verify --quick --only V25 did not run:"; tail -5 "$work/validation.log"; exit 1; }
+browse --dump-dom "file://$(cd "$work/validation" && pwd)/report.html" > "$work/validation_dom.html" \
+  2> "$work/validation_browser.log"
+python3 - "$work/validation_dom.html" <<'EOF' || fail=1
+import re, sys
+dom = open(sys.argv[1], encoding="utf-8").read()
+body = re.search(r"<body[^>]*>", dom).group(0)
+if 'data-figures-missing="0"' not in body or 'data-figures-broken="0"' not in body:
+    print("FAIL: V25's page has figures missing or broken: " + body)
+    sys.exit(1)
+for title in ("Peak stress against the temperature-compensated rate",
+              "The validation uncertainty budget, part by part"):
+    img = [t for t in re.findall(r"<img[^>]*>", dom) if 'alt="' + title in t]
+    if not img or 'data-rendered="yes"' not in img[0]:
+        print("FAIL: V25's figure '%s' is not drawn on its page" % title)
+        sys.exit(1)
+print("V25: the validation band and the budget figures drawn")
 EOF
 [ "$fail" -eq 0 ] && echo "report.html: $sections checks, $rendered figures rendered, no console message"
 exit "$fail"
