@@ -36,8 +36,8 @@ class Preparation
 {
 public:
   Preparation(const PackingSettings &s, const std::function<void(const std::string &)> &log,
-              const std::function<bool()> &stop_requested)
-    : s_(s), log_(log), stop_requested_(stop_requested)
+              const std::function<bool()> &stop_requested, const StageView &at_stage)
+    : s_(s), log_(log), stop_requested_(stop_requested), at_stage_(at_stage)
   {
   }
 
@@ -73,9 +73,15 @@ private:
       throw PreparationStopped("sample preparation stopped at step " + std::to_string(sim_->steps()) +
                                " (cycle " + std::to_string(cycle) + " of a stage): a stop was asked for");
   }
+  void show(const std::string &stage) const
+  {
+    if (at_stage_)
+      at_stage_(*sim_, stage);
+  }
   void record(const StageReport &st)
   {
     report_.stages.push_back(st);
+    show(st.name);
     say(st.name + ": " + std::to_string(st.cycles) + " cycles" + (st.converged ? "" : " (NOT converged)") +
         ", mean stress " + fmt(st.mean_stress) + " Pa, unbalanced-force ratio " + fmt(st.unbalanced_ratio) +
         ", solid fraction " + fmt(st.solid_fraction) + ", coordination " + fmt(st.coordination));
@@ -84,6 +90,7 @@ private:
   const PackingSettings &s_;
   const std::function<void(const std::string &)> &log_;
   const std::function<bool()> &stop_requested_;
+  const StageView &at_stage_;
   CellSize size_{};
   Specimen cell_;
   std::unique_ptr<Simulation> sim_;
@@ -541,6 +548,7 @@ PreparedSample Preparation::run()
 {
   const auto start = std::chrono::steady_clock::now();
   generate();
+  show("placed: " + std::to_string(size_.particles) + " balls at half radius");
   grow();
   // The servo (or fixed-wall) stage only has to remove the growth's
   // overcompression: it settles to ten times the final equilibrium ratio.
@@ -612,9 +620,9 @@ CellSize cell_size(const PackingSettings &s)
 }
 
 PreparedSample prepare_sample(const PackingSettings &settings, const std::function<void(const std::string &)> &log,
-                              const std::function<bool()> &stop_requested)
+                              const std::function<bool()> &stop_requested, const StageView &at_stage)
 {
-  Preparation p(settings, log, stop_requested);
+  Preparation p(settings, log, stop_requested, at_stage);
   return p.run();
 }
 } // namespace dem

@@ -140,11 +140,18 @@ struct PreparedSample
   PackingReport report;
 };
 
+/// What a preparation shows as it goes: the stage's name and the
+/// simulation as that stage left it (the balls placed at R/2, Fig. 5.2;
+/// grown, Fig. 5.3; after the servo, each radius reduction and the
+/// release).
+using StageView = std::function<void(const Simulation &, const std::string &)>;
+
 /// Runs the whole procedure.  `log` receives one line per stage;
 /// `stop_requested`, when given, is asked every 128 steps whether to stop
-/// (then PreparationStopped is thrown).
+/// (then PreparationStopped is thrown); `at_stage`, when given, sees each
+/// stage's end.
 PreparedSample prepare_sample(const PackingSettings &settings, const std::function<void(const std::string &)> &log = {},
-                              const std::function<bool()> &stop_requested = {});
+                              const std::function<bool()> &stop_requested = {}, const StageView &at_stage = {});
 
 /// The cell geometry of eq. 5.1 for the settings: (N, D, H); throws
 /// PackingError for an impossible request.

@@ -114,6 +114,10 @@ void declare_prepare(DeckSchema &s)
   declare_bonds(s, {"touching", "none"}, false);
   s.enter("output");
   s.flag("paraview", true, "Write a ParaView view of the prepared sample to paraview/.");
+  s.flag("paraview stages", false,
+         "Also write a ParaView frame at the end of every preparation stage (the balls placed at half radius, "
+         "Fig. 5.2; grown, Fig. 5.3; after the servo, each radius reduction and the release) to paraview/stages/; "
+         "summary.json lists them.");
   s.leave();
 }
 
@@ -143,7 +147,8 @@ PrepareSpec parse_prepare_spec(const Deck &deck)
           deck.text("title"),
           deck.integer("sample/seed"),
           deck.real("preparation/stress target"),
-          deck.flag("output/paraview")};
+          deck.flag("output/paraview"),
+          deck.flag("output/paraview stages")};
 }
 
 PrepareResult run_prepare(const Deck &deck, const RunOptions &options)
@@ -168,13 +173,28 @@ PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options)
       std::cerr << "prepare " << deck.name << ": " << line << "\n";
   };
 
+  // With output/paraview stages, a frame at the end of each stage (Figs
+  // 5.2, 5.3, 5.5): paraview/stages/, the collection's timestep the stage's
+  // number.
+  std::unique_ptr<ParaviewWriter> stage_frames;
+  if (dir && spec.paraview_stages)
+    stage_frames = std::make_unique<ParaviewWriter>(dir->path("paraview/stages"));
+  nlohmann::json stages = nlohmann::json::array();
+  const auto at_stage = [&](const dem::Simulation &sim, const std::string &name)
+  {
+    if (!stage_frames)
+      return;
+    stage_frames->write_frame(sim, double(stages.size()));
+    stages.push_back({{"frame", stages.size()}, {"stage", name}, {"time_s", sim.time()}});
+  };
+
   PrepareResult result;
   const auto start = std::chrono::steady_clock::now();
   dem::PreparedSample prepared;
   const StopSignals signals;
   try
   {
-    prepared = dem::prepare_sample(settings, say, [&] { return signals.received() != 0; });
+    prepared = dem::prepare_sample(settings, say, [&] { return signals.received() != 0; }, at_stage);
   }
   catch (const dem::NumericalFault &f)
   {
@@ -187,6 +207,11 @@ PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options)
   }
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json summary = {{"kind", "prepare"}, {"title", spec.title}, {"log", log}};
+  if (stage_frames)
+    summary["paraview_stages"] = {{"folder", "paraview/stages"},
+                                  {"frames", stages},
+                                  {"note", "one frame at the end of each preparation stage; the collection's "
+                                           "timestep is the frame's number, not a time"}};
   if (result.status.fault || result.status.interrupted_by)
   {
     summary["status"] = result.status.to_json();

@@ -47,6 +47,7 @@ struct PrepareSpec
   long long seed = 0;          ///< sample/seed
   double stress_target_pa = 0; ///< preparation/stress target [Pa]
   bool paraview = false;       ///< output/paraview
+  bool paraview_stages = false; ///< output/paraview stages
 };
 
 /// parse_prepare, kept with the deck's record.

@@ -24,7 +24,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <vector>
 
 namespace
@@ -335,4 +338,42 @@ TEST_CASE("a sample served from the cache is marked as used", "[prepare][cache]"
   fs::last_write_time(file, long_ago);
   CHECK(demvv::cached_sample_file(deck, {}, false) == file.string());
   CHECK(fs::last_write_time(file) > long_ago + std::chrono::hours(47));
+}
+
+TEST_CASE("a preparation draws a ParaView frame at the end of each stage, the first of balls at half radius",
+          "[prepare]")
+{
+  // Fig. 5.2 is the packing as placed, every ball at R/2; Fig. 5.3 the same
+  // balls grown to R.  The frames are what a reader opens to see them.
+  demvv::Deck deck = small_prepare_deck();
+  deck.set("output/paraview stages", "true");
+  const fs::path dir = demvv_tests::test_folder("prepare_stages");
+  fs::remove_all(dir);
+  const auto result = demvv::run_prepare(deck, {dir.string(), 0, false});
+  REQUIRE_FALSE(result.status.fault);
+  std::ifstream summary_file(dir / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  const nlohmann::json &frames = summary.at("paraview_stages").at("frames");
+  // placed, grown, the servo, the radius reductions, the release at least
+  REQUIRE(frames.size() >= 5);
+  CHECK(frames.front().at("stage").get<std::string>().rfind("placed", 0) == 0);
+  CHECK(frames.back().at("stage").get<std::string>().rfind("release", 0) == 0);
+  for (std::size_t k = 0; k < frames.size(); ++k)
+  {
+    char name[32];
+    std::snprintf(name, sizeof name, "particles_%05zu.vtp", k);
+    CHECK(fs::exists(dir / "paraview" / "stages" / name));
+  }
+  // Frame 0's radii: all R/2 (the deck's default radius).
+  std::ifstream first(dir / "paraview" / "stages" / "particles_00000.vtp");
+  const std::string text((std::istreambuf_iterator<char>(first)), std::istreambuf_iterator<char>());
+  const std::string tag = "Name=\"radius\" NumberOfComponents=\"1\" format=\"ascii\">";
+  const std::size_t at = text.find(tag);
+  REQUIRE(at != std::string::npos);
+  std::istringstream values(text.substr(at + tag.size(), text.find("</DataArray>", at) - at - tag.size()));
+  const double half = 0.5 * deck.real("sample/ball radius");
+  int balls = 0;
+  for (double r; values >> r; ++balls)
+    CHECK(r == Approx(half).epsilon(1e-9));
+  CHECK(balls == 200);
 }
