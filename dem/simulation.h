@@ -52,8 +52,8 @@ struct BondBreak
   double time = 0; ///< s
   Index first = 0, second = 0;
   BreakMode mode = BreakMode::none;
-  double normal_force = 0; ///< N, trial normal force at the break
-  double shear_force = 0;  ///< N, trial shear force magnitude at the break
+  double normal_force = 0;   ///< N, trial normal force at the break
+  double shear_force = 0;    ///< N, trial shear force magnitude at the break
   Vec3 point = Vec3::Zero(); ///< m, midpoint of the two centres at the break
 };
 

@@ -194,7 +194,8 @@ PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options)
   const StopSignals signals;
   try
   {
-    prepared = dem::prepare_sample(settings, say, [&] { return signals.received() != 0; }, at_stage);
+    prepared = dem::prepare_sample(
+      settings, say, [&] { return signals.received() != 0; }, at_stage);
   }
   catch (const dem::NumericalFault &f)
   {

@@ -44,9 +44,9 @@ struct PrepareSpec
   DeckRecord deck;
   dem::PackingSettings settings;
   std::string title;
-  long long seed = 0;          ///< sample/seed
-  double stress_target_pa = 0; ///< preparation/stress target [Pa]
-  bool paraview = false;       ///< output/paraview
+  long long seed = 0;           ///< sample/seed
+  double stress_target_pa = 0;  ///< preparation/stress target [Pa]
+  bool paraview = false;        ///< output/paraview
   bool paraview_stages = false; ///< output/paraview stages
 };
 

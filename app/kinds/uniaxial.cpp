@@ -554,8 +554,9 @@ private:
       const dem::BandCounts c = dem::band_counts(observed, bonds_by_band_);
       nlohmann::json ratio = nlohmann::json::array();
       for (int b = 0; b < band_count; ++b)
-        ratio.push_back(c.expected[b] > 0 ? nlohmann::json({c.observed[b] / c.expected[b], c.ratio_low[b], c.ratio_high[b]})
-                                          : nlohmann::json(nullptr));
+        ratio.push_back(c.expected[b] > 0
+                          ? nlohmann::json({c.observed[b] / c.expected[b], c.ratio_low[b], c.ratio_high[b]})
+                          : nlohmann::json(nullptr));
       return nlohmann::json{{"observed", c.observed},
                             {"expected_uniform", c.expected},
                             {"ratio_and_95_interval", ratio},
@@ -564,11 +565,11 @@ private:
                             {"p_value", c.p_value}};
     };
     const dem::ContactDirections d = dem::contact_directions(sim, bands(sim).axis);
-    const auto direction = [](const dem::DirectionMean &m)
+    const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    const auto direction = [&](const dem::DirectionMean &m)
     {
-      return nlohmann::json{{"contacts", m.contacts},
-                            {"mean_cos2_to_axis", std::isfinite(m.mean) ? nlohmann::json(m.mean) : nlohmann::json(nullptr)},
-                            {"half_width_95", std::isfinite(m.half_width) ? nlohmann::json(m.half_width) : nlohmann::json(nullptr)}};
+      return nlohmann::json{
+        {"contacts", m.contacts}, {"mean_cos2_to_axis", finite(m.mean)}, {"half_width_95", finite(m.half_width)}};
     };
     return {{"bands", names},
             {"bands_note", "six bands of equal volume: thirds of the height between the platens (bottom, middle, top) "

@@ -321,7 +321,8 @@ TEST_CASE("band counts against a uniform share: chi-square, Poisson intervals, c
   // Directions: a pair pressed together along z and a bonded pair pulled
   // apart along x; (n . z)^2 is 1 for the first, 0 for the second.
   dem::ParticleStore p;
-  for (const dem::Vec3 &at : {dem::Vec3(0, 0, 0), dem::Vec3(0, 0, 1.9e-3), dem::Vec3(1, 0, 0), dem::Vec3(1.002001, 0, 0)})
+  for (const dem::Vec3 &at :
+       {dem::Vec3(0, 0, 0), dem::Vec3(0, 0, 1.9e-3), dem::Vec3(1, 0, 0), dem::Vec3(1.002001, 0, 0)})
     p.add(dem::small_systems::ball(at, 1e-3, 1e6, 1e5, 0.5));
   auto sim = demtest::make_sim(std::move(p));
   sim.refresh_contacts();

@@ -370,10 +370,11 @@ CheckOutcome check_network_identity(const CheckContext &ctx)
       bound(std::string(route.label) + ": max |sigma - c f_B| / max |c f_B| at the deck's step", production,
             bound_estimate, false, ToleranceClass::B,
             "trapezoidal time error ~ (dt/tau)^2/12 for the shortest contact time tau = " + num(tau) + " s, times 10"));
-    out.metrics.push_back(bound(std::string(route.label) + ": largest |observed order in dt - 2| over the finest "
-                                                           "three steps",
-                                t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
-                                "the trapezoidal update is second order (within 0.1 at each of the two finest halvings)"));
+    out.metrics.push_back(
+      bound(std::string(route.label) + ": largest |observed order in dt - 2| over the finest "
+                                       "three steps",
+            t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
+            "the trapezoidal update is second order (within 0.1 at each of the two finest halvings)"));
     // With one shape in shear and bulk the scheme keeps eps_r = -nu eps_a
     // exactly; what is left is the CG solver's residual (1e-12).
     out.metrics.push_back(bound(std::string(route.label) + ": max |eps_r + nu eps_a| / max |nu eps_a|", radial, 1e-9,
@@ -483,9 +484,9 @@ CheckOutcome check_frictionless_cylinder(const CheckContext &ctx)
                                 ToleranceClass::B, budget));
     out.metrics.push_back(bound(tag + "radial strain error against the closed form at the deck's step", radial, 1e-3,
                                 false, ToleranceClass::B, budget));
-    out.metrics.push_back(bound(tag + "largest |observed order in dt - 2| over the finest three steps",
-                                t.largest_order_deviation(2), 0.1, false, ToleranceClass::B,
-                                "the trapezoidal update is second order (within 0.1 at each of the two finest halvings)"));
+    out.metrics.push_back(bound(
+      tag + "largest |observed order in dt - 2| over the finest three steps", t.largest_order_deviation(2), 0.1, false,
+      ToleranceClass::B, "the trapezoidal update is second order (within 0.1 at each of the two finest halvings)"));
   }
   return out;
 }
