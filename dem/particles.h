@@ -79,4 +79,11 @@ public:
   std::vector<double> friction;            // -
   std::vector<std::uint8_t> motion;
 };
+/// The point where the line of centres of balls i and j meets their
+/// surfaces in the ratio of the radii [m]: the contact point of two
+/// touching balls, the midpoint of equal ones (where a bond broke).
+inline Vec3 centre_line_point(const ParticleStore &p, Index i, Index j)
+{
+  return p.position[i] + (p.position[j] - p.position[i]) * (p.radius[i] / (p.radius[i] + p.radius[j]));
+}
 } // namespace dem

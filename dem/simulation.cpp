@@ -115,21 +115,12 @@ bool Simulation::step(StepHooks &hooks)
 
 namespace
 {
-/// The largest stability row bound of one contact with a ball's own
-/// stiffness [1/s^2] (real mass and inertia, so that held balls count too).
-/// Row bound of ball p against one fixed partner with its own stiffness [1/s^2].
+/// Row bound of ball p against one fixed partner with its own stiffness
+/// [1/s^2] (real mass and inertia, so that held balls count too).
 double lone_bound(const ParticleStore &P, Index p)
 {
   const double own = std::max(P.kn[p], P.ks[p] * (1.0 + P.mass[p] * P.radius[p] * P.radius[p] / P.inertia[p]));
   return own / P.mass[p];
-}
-
-double lone_contact_bound(const ParticleStore &P)
-{
-  double largest = 0;
-  for (Index p = 0; p < P.size(); ++p)
-    largest = std::max(largest, lone_bound(P, p));
-  return largest;
 }
 } // namespace
 
@@ -138,13 +129,24 @@ Index stiffest_ball(const ParticleStore &particles)
   Index stiffest = -1;
   double largest = -1;
   for (Index p = 0; p < particles.size(); ++p)
-    if (const double b = lone_bound(particles, p); !(b <= largest))
+    if (const double b = lone_bound(particles, p); b > largest)
     {
       largest = b;
       stiffest = p;
     }
   return stiffest;
 }
+
+namespace
+{
+/// The largest stability row bound of one contact with a ball's own
+/// stiffness [1/s^2]; 0 for no balls.
+double lone_contact_bound(const ParticleStore &P)
+{
+  const Index b = stiffest_ball(P);
+  return b < 0 ? 0.0 : lone_bound(P, b);
+}
+} // namespace
 
 double estimated_memory_bytes(double particles, int walls)
 {
@@ -226,8 +228,8 @@ void Simulation::record_breaks()
   for (const BrokenBond &b : broken_)
   {
     const Contact &k = contacts_[b.contact];
-    const Vec3 midpoint = 0.5 * (particles_.position[k.first] + particles_.position[k.second]);
-    breaks_.push_back({time_, k.first, k.second, b.mode, b.trial.normal, b.trial.shear, midpoint});
+    breaks_.push_back({time_, k.first, k.second, b.mode, b.trial.normal, b.trial.shear,
+                       centre_line_point(particles_, k.first, k.second)});
     ++broken_count(b.mode);
   }
 }

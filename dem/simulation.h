@@ -54,7 +54,7 @@ struct BondBreak
   BreakMode mode = BreakMode::none;
   double normal_force = 0;   ///< N, trial normal force at the break
   double shear_force = 0;    ///< N, trial shear force magnitude at the break
-  Vec3 point = Vec3::Zero(); ///< m, midpoint of the two centres at the break
+  Vec3 point = Vec3::Zero(); ///< m, centre_line_point of the pair at the break
 };
 
 /// What the energy ledger (energy.h) of a stable run can show, each part a
@@ -168,7 +168,7 @@ double estimated_memory_bytes(double particles, int walls);
 double least_steps(const ParticleStore &particles, const SimulationSettings &settings, double duration);
 
 /// The ball whose lone contact sets that largest step (the largest own
-/// stiffness over mass; a NaN one first); -1 for no balls.
+/// stiffness over mass, NaN ignored); -1 for no balls.
 Index stiffest_ball(const ParticleStore &particles);
 
 /// What a protocol may do at a step's force time (see StepHooks).

@@ -127,7 +127,7 @@ std::array<double, CylinderBands::count> bonds_by_band(const Simulation &sim, co
   const ParticleStore &p = sim.particles();
   for (const Contact &k : sim.contacts().entries())
     if (k.bonded)
-      held[bands.band(0.5 * (p.position[k.first] + p.position[k.second]))] += 1;
+      held[bands.band(centre_line_point(p, k.first, k.second))] += 1;
   return held;
 }
 

@@ -89,7 +89,7 @@ struct BandCounts
 BandCounts band_counts(const std::array<double, CylinderBands::count> &observed,
                        const std::array<double, CylinderBands::count> &weights);
 
-/// The bonded ball-ball contacts by band, at the midpoints of their centres.
+/// The bonded ball-ball contacts by band, at their centre_line_point (particles.h).
 std::array<double, CylinderBands::count> bonds_by_band(const Simulation &sim, const CylinderBands &bands);
 
 /// Directions of the force-carrying ball-ball contacts (Fig. 7.4): the mean

@@ -85,15 +85,10 @@ void ParaviewWriter::restore(const nlohmann::json &state)
                        b.at(3).get<int>(), b.at(4).get<double>()});
 }
 
-void ParaviewWriter::add_breaks(const dem::Simulation &sim, const std::vector<dem::BondBreak> &breaks)
+void ParaviewWriter::add_breaks(const std::vector<dem::BondBreak> &breaks)
 {
-  const dem::ParticleStore &p = sim.particles();
   for (const dem::BondBreak &b : breaks)
-  {
-    const dem::Vec3 d = p.position[b.second] - p.position[b.first];
-    const dem::Vec3 point = p.position[b.first] + d * (p.radius[b.first] / (p.radius[b.first] + p.radius[b.second]));
-    broken_.push_back({point, static_cast<int>(b.mode), b.time});
-  }
+    broken_.push_back({b.point, static_cast<int>(b.mode), b.time});
 }
 
 void ParaviewWriter::write_frame(const dem::Simulation &sim, double time)

@@ -29,7 +29,7 @@ class ParaviewWriter
 public:
   explicit ParaviewWriter(std::string dir);
   /// Records bond breaks (call with each batch taken from the simulation).
-  void add_breaks(const dem::Simulation &sim, const std::vector<dem::BondBreak> &breaks);
+  void add_breaks(const std::vector<dem::BondBreak> &breaks);
   void write_frame(const dem::Simulation &sim, double time);
   /// The id each ball's frames carry: its row in the user's file where the
   /// run renumbered the balls (dem/spatial_order.h); by default its index.

@@ -353,7 +353,7 @@ void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const 
   snap.clock.last_time_step = last_step;
 }
 
-void write_sample(const std::string &path, const SampleFile &sample)
+std::string write_sample(const std::string &path, const SampleFile &sample)
 {
   const dem::Snapshot &s = sample.snapshot;
   const dem::SimulationClock &c = s.clock;
@@ -464,12 +464,19 @@ void write_sample(const std::string &path, const SampleFile &sample)
     wall_contacts.push_back(row);
   }
   doc["wall_contacts"] = {{"columns", wall_contact_columns()}, {"rows", wall_contacts}};
-  write_atomically(path, json_text(doc) + "\n");
+  std::string text = json_text(doc) + "\n";
+  write_atomically(path, text);
+  return text;
 }
 
 SampleFile read_sample(const std::string &path)
 {
-  const json doc = parse_json_input(read_input(path, "sample file", max_table_bytes), path, "demvv sample file");
+  return parse_sample(read_input(path, "sample file", max_table_bytes), path);
+}
+
+SampleFile parse_sample(const std::string &text, const std::string &path)
+{
+  const json doc = parse_json_input(text, path, "demvv sample file");
   const Fields f(path);
   using Sign = Fields::Sign;
   if (!doc.is_object() || doc.value("format", json()) != "demvv-sample")

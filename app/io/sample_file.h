@@ -69,8 +69,8 @@ struct SampleFile
 /// law states are kept (see the header note on tests of another law).
 void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const dem::WallProps &platen);
 
-/// Writes a sample file atomically.
-void write_sample(const std::string &path, const SampleFile &sample);
+/// Writes a sample file atomically; returns the text written.
+std::string write_sample(const std::string &path, const SampleFile &sample);
 
 /// Reads a sample file.  Every field is checked on load: its type, its
 /// range (finite numbers; radii, densities and stiffnesses > 0; flags 0 or
@@ -81,6 +81,9 @@ void write_sample(const std::string &path, const SampleFile &sample);
 /// names no platens (a checkpoint) loads; check_test_cell() refuses it for a
 /// test.
 SampleFile read_sample(const std::string &path);
+
+/// read_sample on a sample file's text already read from `path`.
+SampleFile parse_sample(const std::string &text, const std::string &path);
 
 /// Refuses (one-line DeckError naming `path`) a sample a uniaxial test
 /// cannot run on: no platens, a cell without size, platens that do not

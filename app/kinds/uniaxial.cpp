@@ -573,8 +573,8 @@ private:
     };
     return {{"bands", names},
             {"bands_note", "six bands of equal volume: thirds of the height between the platens (bottom, middle, top) "
-                           "x core (r < R/sqrt(2)) and rim; a break counts in the band of the midpoint of its two "
-                           "balls at the break"},
+                           "x core (r < R/sqrt(2)) and rim; a break counts in the band of the point on its two balls' "
+                           "line of centres (the midpoint of equal balls) at the break"},
             {"bonds_installed_by_band", bonds_by_band_},
             {"bond_breaks_by_band",
              {{"all", counts(all)},

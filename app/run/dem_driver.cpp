@@ -173,11 +173,9 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
   state.snapshot = sim.snapshot();
   state.contact_law = std::string(sim.model().name());
   state.title = "checkpoint of " + protocol.label();
-  write_sample(checkpoint_sample_file(dir), state);
   // Its hash ties the sample file to the state below: an edited sample
   // (a position changed by hand) is refused on resume, not continued.
-  const std::string sample_hash =
-    fnv1a_hex(read_input(checkpoint_sample_file(dir), "checkpoint sample file", max_table_bytes));
+  const std::string sample_hash = fnv1a_hex(write_sample(checkpoint_sample_file(dir), state));
 
   nlohmann::json series = nlohmann::json::array();
   for (const SeriesFile &f : protocol.series_files())
@@ -228,13 +226,14 @@ void resume_from_checkpoint_state(dem::Simulation &sim, DemProtocol &protocol, R
 {
   const nlohmann::json doc = read_checkpoint(dir);
   const std::string sample_path = checkpoint_sample_file(dir);
-  const std::string sample_hash = fnv1a_hex(read_input(sample_path, "checkpoint sample file", max_table_bytes));
+  const std::string sample_text = read_input(sample_path, "checkpoint sample file", max_table_bytes);
+  const std::string sample_hash = fnv1a_hex(sample_text);
   if (sample_hash != doc.at("sample_fnv1a64").get<std::string>())
     throw DeckError(sample_path + ": FNV-1a 64 " + sample_hash + ", the checkpoint recorded " +
                     doc.at("sample_fnv1a64").get<std::string>() +
                     ": expected the sample file the checkpoint wrote, unedited (a checkpoint cut short, or changed by "
                     "hand, cannot be resumed)");
-  SampleFile state = read_sample(sample_path);
+  SampleFile state = parse_sample(sample_text, sample_path);
   if (state.snapshot.clock.steps != doc.at("steps").get<long>())
     throw DeckError(checkpoint_state_file(dir) + ": the checkpoint's state (step " +
                     std::to_string(doc.at("steps").get<long>()) + ") and its sample file (step " +

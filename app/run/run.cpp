@@ -391,7 +391,7 @@ std::vector<dem::BondBreak> RunFiles::drain_breaks(dem::Simulation &sim)
       breaks_->write({b.time, double(std::min(a, c)), double(std::max(a, c)), double(static_cast<int>(b.mode))});
     }
   if (paraview_)
-    paraview_->add_breaks(sim, breaks);
+    paraview_->add_breaks(breaks);
   return breaks;
 }
 
