@@ -13,7 +13,7 @@ function(demvv_room name)
   add_library(${name} STATIC ${ROOM_SOURCES})
   add_dependencies(${name} demvv_source_state)
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/app)
-  deal_ii_setup_target(${name})
+  demvv_deal_ii_target(${name})
   # deal_ii_setup_target uses the plain signature: so must every later call.
   target_compile_options(${name} PRIVATE ${DEMVV_WARNINGS})
   if(DEMVV_FUZZ)
