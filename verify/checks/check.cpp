@@ -17,6 +17,8 @@ std::string_view category_name(Category c)
     return "code verification";
   case Category::solution_verification:
     return "solution verification";
+  case Category::model_comparison:
+    return "model comparison";
   case Category::calibration:
     return "calibration";
   case Category::validation:

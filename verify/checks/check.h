@@ -3,7 +3,8 @@
 // A check is one row of the registry (checks_registry.cpp): an id, a title,
 // the family of checks it belongs to, one sentence of requirement ("demvv
 // shall ..."), its V&V category (thesis §2.5: code verification, solution
-// verification, calibration, validation), the tolerance classes its metrics
+// verification, calibration, validation; and model comparison, DEM against
+// the continuum of the same contacts), the tolerance classes its metrics
 // use, the reference it is measured against, and the function that runs it.
 // The function returns metrics; each metric carries its value, its
 // tolerance, the class of that tolerance and the reason for it.  A metric
@@ -33,13 +34,19 @@
 
 namespace demvv
 {
+/// The kind of evidence a check gives (catalogue.cpp defines each).
 enum class Category
 {
   code_verification,
   solution_verification,
+  model_comparison,
   calibration,
   validation,
 };
+
+/// Every category, in the order the catalogue and the report list them.
+inline constexpr Category all_categories[] = {Category::code_verification, Category::solution_verification,
+                                              Category::model_comparison, Category::calibration, Category::validation};
 
 std::string_view category_name(Category c);
 

@@ -231,7 +231,7 @@ const std::vector<Check> &check_registry()
      "and frictionless platens shall follow the calibrated continuum (E/K_m times the contact chain) within 5 % "
      "under constant-rate, creep, relaxation and cyclic loading at a quasi-static rate; with modified Burger's "
      "contacts, outside the identity, the two shall part visibly (model form; bonded platens are reported).",
-     C::code_verification,
+     C::model_comparison,
      {T::B},
      "correspondence principle: a linear viscoelastic network of same-shape contacts is (E/K_m) x one contact "
      "chain; the 1000-ball sample (--quick), the 6000-ball sample (--full)",

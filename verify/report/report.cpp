@@ -31,8 +31,7 @@ std::string reference_text(const ConvergenceTable &t)
 Headline headline(const std::vector<CheckRecord> &records)
 {
   Headline h;
-  for (Category c :
-       {Category::code_verification, Category::solution_verification, Category::calibration, Category::validation})
+  for (Category c : all_categories)
   {
     Headline::Tally t{c};
     for (const CheckRecord &r : records)
@@ -223,7 +222,8 @@ std::string report_markdown(const std::vector<CheckRecord> &records, const nlohm
     o << paragraph << "\n\n";
   o << "Categories follow thesis §2.5: *code verification* (is the equation solved right), *solution "
        "verification* (how accurate is this solution), *calibration* (parameters fitted to data) and "
-       "*validation* (is it the right equation). Each metric has a tolerance class: A algebraic (round-off), "
+       "*validation* (is it the right equation); demvv adds *model comparison* (DEM against the continuum of the "
+       "same contacts, held to the identity between them). Each metric has a tolerance class: A algebraic (round-off), "
        "B time-discretised (truncation and its order), C event-resolved (one step), D statistical (seeds); "
        "docs/verification_catalogue.md defines them.\n\n";
   o << "## Requirements\n\n| id | requirement | classes | category | reference | case decks | verdict | runtime [s] "

@@ -285,8 +285,7 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
       << html_escaped(tolerance_class_list(r.check->tolerance_classes)) << "</td><td>" << verdict(r.pass())
       << "</td><td>" << report_number(r.seconds) << "</td></tr>\n";
   o << "</table>\n<h2>Categories and tolerance classes</h2>\n<dl>\n";
-  for (Category c :
-       {Category::code_verification, Category::solution_verification, Category::calibration, Category::validation})
+  for (Category c : all_categories)
     o << "<dt><b>" << html_escaped(category_name(c)) << "</b></dt><dd>" << html_escaped(category_definition(c))
       << "</dd>\n";
   for (ToleranceClass t : {ToleranceClass::A, ToleranceClass::B, ToleranceClass::C, ToleranceClass::D})
