@@ -46,6 +46,12 @@ struct Curve
 
 /// A curve of points held in memory.
 Curve curve(std::string title, std::vector<double> x, std::vector<double> y, CurveStyle style = CurveStyle::line);
+/// A smooth curve held in memory with at most `at_most` of its points:
+/// every k-th point and the last (a picture resolves about a thousand
+/// points across; a slow pull may have a hundred thousand rows).  Not for
+/// curves with sharp events between rows (a pulse's peak): thin those by
+/// hand, keeping the event.
+Curve thinned(Curve c, std::size_t at_most = 1000);
 /// A curve read from two columns of a CSV file.
 Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale = 1,
                    double y_scale = 1, CurveStyle style = CurveStyle::line);

@@ -29,6 +29,33 @@ Curve curve(std::string title, std::vector<double> x, std::vector<double> y, Cur
   return c;
 }
 
+Curve thinned(Curve c, std::size_t at_most)
+{
+  const std::size_t n = c.x.size();
+  if (at_most < 2 || n <= at_most)
+    return c;
+  const std::size_t every = (n - 1 + at_most - 2) / (at_most - 1);
+  Curve t = c;
+  t.x.clear();
+  t.y.clear();
+  t.y_error.clear();
+  for (std::size_t k = 0; k < n; k += every)
+  {
+    t.x.push_back(c.x[k]);
+    t.y.push_back(c.y[k]);
+    if (!c.y_error.empty())
+      t.y_error.push_back(c.y_error[k]);
+  }
+  if ((n - 1) % every != 0)
+  {
+    t.x.push_back(c.x.back());
+    t.y.push_back(c.y.back());
+    if (!c.y_error.empty())
+      t.y_error.push_back(c.y_error.back());
+  }
+  return t;
+}
+
 Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale,
                    double y_scale, CurveStyle style)
 {

@@ -14,6 +14,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -70,6 +71,39 @@ TEST_CASE("gnuplot draws a figure held in memory as SVG and reports a figure wit
   CHECK(fs::exists(dir / "parabola.csv"));
   CHECK_FALSE(drawn[1].drawn());
   CHECK(contains(drawn[1].problem, "no data"));
+}
+
+TEST_CASE("a thinned curve keeps at most its share of points, the first and the last, in order", "[plot]")
+{
+  for (const std::size_t n : {1u, 2u, 999u, 1000u, 1001u, 1002u, 100000u, 123457u})
+  {
+    std::vector<double> x, y, e;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      x.push_back(double(k));
+      y.push_back(2.0 * double(k));
+      e.push_back(0.5);
+    }
+    demvv::Curve c = demvv::curve("c", x, y);
+    c.y_error = e;
+    const demvv::Curve t = demvv::thinned(c, 1000);
+    INFO("n = " << n);
+    if (n <= 1000)
+      CHECK(t.x.size() == n); // nothing to thin
+    else
+    {
+      CHECK(t.x.size() <= 1000);
+      CHECK(t.x.size() > 500); // every k-th with k = ceil((n - 1) / 999): at least half the share
+    }
+    REQUIRE(t.y.size() == t.x.size());
+    CHECK(t.y_error.size() == t.x.size());
+    CHECK(t.x.front() == 0);
+    CHECK(t.x.back() == double(n - 1));
+    for (std::size_t k = 0; k < t.x.size(); ++k)
+      CHECK(t.y[k] == 2 * t.x[k]); // each point is one of the curve's own
+    CHECK(std::is_sorted(t.x.begin(), t.x.end()));
+    CHECK(t.title == "c");
+  }
 }
 
 TEST_CASE("the Richardson curve of a GCI figure passes through the three levels and the extrapolated value", "[plot]")

@@ -360,7 +360,7 @@ TEST_CASE("a preparation draws a ParaView frame at the end of each stage, the fi
   CHECK(frames.back().at("stage").get<std::string>().rfind("release", 0) == 0);
   for (std::size_t k = 0; k < frames.size(); ++k)
   {
-    char name[32];
+    char name[40]; // "particles_", up to 20 digits, ".vtp"
     std::snprintf(name, sizeof name, "particles_%05zu.vtp", k);
     CHECK(fs::exists(dir / "paraview" / "stages" / name));
   }

@@ -328,6 +328,20 @@ CheckOutcome check_viscosity_scaling(const CheckContext &ctx)
                               curve_error(c_inf, slow.law, slow.speed), 0.5 * expected_gap, true, ToleranceClass::B,
                               "the counter-example must differ from the unscaled curve (closed forms differ by " +
                                 num(expected_gap) + " of C_inf v); at least half of that"));
+  std::vector<double> closed;
+  for (double u : slow.extension)
+    closed.push_back(slow.law.constant_velocity_force(u / slow.speed, slow.speed));
+  out.figures.push_back(make_figure(
+    "viscosity_scaling", "Viscosity scaling: one pull at its speed and at 100 times it", "extension [mm]",
+    "tensile force [N]",
+    {curve("demvv, unscaled", slow.extension, slow.tension),
+     curve("demvv, both viscosities / 100 at 100 v", both.extension, both.tension),
+     curve("demvv, C_inf alone / 100 at 100 v", c_inf.extension, c_inf.tension),
+     curve("eq. 7.18, unscaled", slow.extension, closed, CurveStyle::dashed)},
+    "Dividing both viscosities by the speed-up gives the unscaled force-extension curve (eq. 7.21); scaling the "
+    "Maxwell viscosity C_inf alone, the thesis's counter-example (Fig. 7.8), does not."));
+  for (Curve &c : out.figures.back().curves)
+    c.x_scale = 1e3;
   // Rate-dependent bond strength at the physical rate, not the run's.
   const dem::RateLaw rate;
   out.metrics.push_back(relative_error("bond strength factor with scaling on vs eq. 7.23 at the physical rate",
@@ -348,11 +362,26 @@ CheckOutcome check_displacement_criterion(const CheckContext &ctx)
   if (!ctx.quick)
     speeds.insert(speeds.begin(), "1e-5");
   double previous_peak = std::nan("");
+  Figure figure = make_figure(
+    "displacement_criterion", "Displacement criterion: pulls at several speeds", "extension [mm]", "tensile force [N]",
+    {},
+    "Each bond breaks (its curve ends) at the same extension delta_c whatever the speed, at the force eq. 7.18 "
+    "gives there: the faster pull carries more force to the same extension (thesis Fig. A.1).");
   for (const std::string &v : speeds)
   {
     const double speed = std::stod(v);
     const Pull p = pull(ctx, "v17_displacement_criterion",
                         {"particles/file=balls_" + v + ".csv", "run/duration=" + num(2 * delta_c / speed)});
+    // One colour per speed: the pull and its closed form.
+    const int colour = static_cast<int>(figure.curves.size() / 2) + 1;
+    figure.curves.push_back(thinned(curve("demvv, v = " + v + " m/s", p.extension, p.tension)));
+    figure.curves.back().colour = colour;
+    std::vector<double> law;
+    for (double u : p.extension)
+      law.push_back(u <= delta_c ? p.law.constant_velocity_force(u / speed, speed) : 0.0);
+    figure.curves.push_back(
+      thinned(curve("eq. 7.18 to delta_c, v = " + v + " m/s", p.extension, law, CurveStyle::dashed)));
+    figure.curves.back().colour = colour;
     const double u_break = speed * p.break_time;
     out.metrics.push_back(relative_error("v = " + v + " m/s: extension at the break vs delta_c", u_break, delta_c,
                                          speed * p.dt / delta_c, ToleranceClass::C,
@@ -370,6 +399,9 @@ CheckOutcome check_displacement_criterion(const CheckContext &ctx)
     previous_peak = peak;
     out.notes.push_back("v = " + v + " m/s: break at u = " + num(u_break) + " m, peak " + num(peak) + " N");
   }
+  for (Curve &c : figure.curves)
+    c.x_scale = 1e3;
+  out.figures.push_back(std::move(figure));
   return out;
 }
 } // namespace demvv

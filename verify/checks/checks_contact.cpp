@@ -128,6 +128,7 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
     const auto bonded = r.contacts.column("bonded");
     const double dt = r.series.column("time_step_s").back();
     double law_error = 0, after = 0, u_break = std::nan("");
+    std::vector<double> extension, tension, closed;
     for (std::size_t k = 0; k < t.size(); ++k)
     {
       const double u = v * t[k]; // imposed extension, independent of the engine's geometry
@@ -139,7 +140,18 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
           u_break = u;
         after = std::max(after, std::abs(fn[k]));
       }
+      extension.push_back(u);
+      tension.push_back(-fn[k]);
+      closed.push_back(u < phi / K ? K * u : 0.0);
     }
+    out.figures.push_back(
+      make_figure("bond_tension", "Contact bond pulled apart: tensile force against extension", "extension u [m]",
+                  "tensile force -F_n [N]",
+                  {curve("demvv", extension, tension),
+                   curve("closed form: K_n u up to phi_n, then 0", extension, closed, CurveStyle::dashed)},
+                  "The bond carries K_n u until the force reaches its normal strength phi_n, then both forces are zero "
+                  "(thesis §3.4.2); the break falls within one step's extension (v dt) of phi_n / K_n."));
+    out.figures.back().y_top_at_least = 1.5 * phi; // room for the key above the curves
     // Positions carry round-off of ~1e-16 x 2R; K times that is ~1e-12 N.
     out.metrics.push_back(bound("tension: max |F_n + K_n u| / phi_n before the break", law_error, 1e-9, false,
                                 ToleranceClass::A, "secant law, round-off in positions only"));
@@ -161,6 +173,7 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
     const auto fn = r.contacts.column("normal_force_n"), bonded = r.contacts.column("bonded");
     const double dt = r.series.column("time_step_s").back();
     double law_error = 0, slip_error = 0, u_break = std::nan("");
+    std::vector<double> displacement, shear, closed;
     for (std::size_t k = 0; k < t.size(); ++k)
     {
       const double u = v * t[k];
@@ -172,7 +185,18 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
           u_break = u;
         slip_error = std::max(slip_error, std::abs(fs[k] - params.friction * fn[k]) / (params.friction * fn[k]));
       }
+      displacement.push_back(u);
+      shear.push_back(fs[k]);
+      closed.push_back(u < phi / params.ks ? params.ks * u : params.friction * fn[k]);
     }
+    out.figures.push_back(make_figure(
+      "bond_shear", "Contact bond sheared under a compressive preload: shear force against displacement",
+      "shear displacement u_s [m]", "shear force F_s [N]",
+      {curve("demvv", displacement, shear),
+       curve("closed form: K_s u_s up to phi_s, then mu F_n", displacement, closed, CurveStyle::dashed)},
+      "The bond carries K_s u_s until the shear force reaches its shear strength phi_s; once it has broken the "
+      "contact slides, its shear force held at the Coulomb limit mu F_n of the preload."));
+    out.figures.back().key = "bottom right";
     // The driven ball moves on a straight line, so the contact normal turns
     // by u/d and the shear force lags the straight-line displacement by a
     // relative (u/d)^2 / 2 (< 1e-6 here); 1e-5 allows for it.
@@ -213,9 +237,12 @@ CheckOutcome check_coulomb_slip(const CheckContext &ctx)
     const auto fn = r.contacts.column("normal_force_n");
     const double dt = r.series.column("time_step_s").back();
     double stick_error = 0, slip_error = 0, onset = std::nan(""), onset_expected = std::nan("");
+    std::vector<double> displacement, closed;
     for (std::size_t k = 0; k < t.size(); ++k)
     {
       const double limit = params.friction * fn[k];
+      displacement.push_back(v * t[k]);
+      closed.push_back(std::min(params.ks * v * t[k], limit));
       if (fs[k] < limit * (1 - 1e-12))
         stick_error = std::max(stick_error, std::abs(fs[k] - params.ks * v * t[k]) / limit);
       else
@@ -230,6 +257,14 @@ CheckOutcome check_coulomb_slip(const CheckContext &ctx)
         slip_error = std::max(slip_error, std::abs(fs[k] / limit - 1));
       }
     }
+    out.figures.push_back(make_figure(
+      "coulomb_slip", "Coulomb slip: shear force against displacement", "shear displacement u_s [m]",
+      "shear force F_s [N]",
+      {curve("demvv", displacement, fs),
+       curve("closed form: min(K_s u_s, mu F_n)", displacement, closed, CurveStyle::dashed)},
+      "The contact sticks, carrying K_s u_s, until the shear force reaches the Coulomb limit mu F_n, then slides "
+      "with its shear force held at that limit; mu F_n falls slightly as the ball slides along a straight line."));
+    out.figures.back().key = "bottom right";
     const double turn = onset_expected / d;
     out.metrics.push_back(bound("slip: max |F_s - K_s u_s| / (mu F_n) while sticking", stick_error,
                                 std::max(1e-5, turn * turn), false, ToleranceClass::A,
@@ -283,8 +318,20 @@ CheckOutcome check_free_flight(const CheckContext &ctx)
   const auto x = r.particles.column("x_m"), z = r.particles.column("z_m");
   const double vx0 = 1, vz0 = 2, g = 9.81;
   double err = 0;
+  std::vector<double> x_closed, z_closed;
   for (std::size_t k = 0; k < t.size(); ++k)
-    err = std::max(err, std::hypot(x[k] - vx0 * t[k], z[k] - (vz0 * t[k] - 0.5 * g * t[k] * t[k])));
+  {
+    x_closed.push_back(vx0 * t[k]);
+    z_closed.push_back(vz0 * t[k] - 0.5 * g * t[k] * t[k]);
+    err = std::max(err, std::hypot(x[k] - x_closed.back(), z[k] - z_closed.back()));
+  }
+  out.figures.push_back(make_figure(
+    "projectile", "Free flight: the ball's path", "x [m]", "z [m]",
+    {curve("demvv", x, z),
+     curve("closed form: x = v_x t, z = v_z t - g t^2 / 2", x_closed, z_closed, CurveStyle::dashed)},
+    "Under gravity alone the path is a parabola, which the integrator follows to round-off (the metric gives "
+    "the largest distance from it)."));
+  out.figures.back().key = "bottom center";
   const double steps = static_cast<double>(r.sim->steps());
   const double travel = std::hypot(vx0, vz0) * t.back();
   // Each step rounds x and v once: the error grows like n eps |x| for n
