@@ -510,6 +510,20 @@ void Calibration::write_outputs(const std::string &status, const Evaluation *fin
     }
     doc["parameters"].push_back(p);
   }
+  // The path the fit took: each centre's parameters and target means.
+  doc["path"] = nlohmann::json::array();
+  for (const Evaluation &c : history_)
+  {
+    nlohmann::json values = nlohmann::json::array(), means = nlohmann::json::array(), ses = nlohmann::json::array();
+    for (const std::string &v : c.centre.values)
+      values.push_back(std::stod(v));
+    for (std::size_t i = 0; i < targets_.size(); ++i)
+    {
+      means.push_back(finite_or_null(c.centre.mean[i]));
+      ses.push_back(finite_or_null(c.centre.se[i]));
+    }
+    doc["path"].push_back({{"iteration", c.iteration}, {"values", values}, {"mean", means}, {"se", ses}});
+  }
   if (!cov_all.empty())
     for (std::size_t j = 0; j < parameters_.size(); ++j)
     {
