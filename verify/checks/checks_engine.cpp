@@ -229,11 +229,28 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     dem::Simulation sim = oscillator(h, v0, false);
     const double omega = h / sim.settings().fixed_time_step;
     double largest = 0;
+    std::vector<double> step, displacement;
     for (int k = 0; k < 5000; ++k)
     {
       sim.step();
       largest = std::max(largest, std::abs(sim.particles().position[1].x() - 2 * R));
+      if (k < 200)
+      {
+        step.push_back(k + 1);
+        displacement.push_back(sim.particles().position[1].x() - 2 * R);
+      }
     }
+    const double envelope = v0 / omega / std::sqrt(1 - h * h / 4);
+    out.figures.push_back(make_figure(
+      "stable_side", "Just inside the limit: omega dt = 1.98", "step", "displacement [m]",
+      {curve("demvv", step, displacement, CurveStyle::markers_and_line),
+       curve("closed form: +-(v0/omega) / sqrt(1 - (omega dt)^2/4)", {step.front(), step.back()}, {envelope, envelope},
+             CurveStyle::dashed),
+       curve("", {step.front(), step.back()}, {-envelope, -envelope}, CurveStyle::dashed)},
+      "The first 200 steps: the centred-difference oscillator flips sign almost every step but stays within "
+      "the discrete solution's amplitude, seven times v0/omega this close to the limit."));
+    out.figures.back().curves[2].colour = 2;
+    out.figures.back().y_top_at_least = 1.6 * envelope; // room for the key
     out.metrics.push_back(relative_error("omega dt = 1.98: largest amplitude vs (v0/omega)/sqrt(1 - (omega dt)^2/4)",
                                          largest, v0 / omega / std::sqrt(1 - h * h / 4), 0.01, ToleranceClass::B,
                                          "sampling of the discrete sine at its steps (< 1 % at 5000 steps)"));
@@ -253,6 +270,20 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     const double c = 1 - h * h / 2;
     const double lambda = std::abs(c) + std::sqrt(c * c - 1);
     const double observed = std::pow(std::max(amp[69], amp[68]) / std::max(amp[29], amp[28]), 1.0 / 40);
+    std::vector<double> step, growth;
+    for (int k = 0; k < 70; ++k)
+    {
+      step.push_back(k + 1);
+      growth.push_back(std::max(amp[29], amp[28]) * std::pow(lambda, k - 29));
+    }
+    Figure f = make_figure(
+      "unstable_side", "Just past the limit: omega dt = 2.02", "step", "|displacement| [m]",
+      {curve("demvv", step, amp, CurveStyle::markers_and_line),
+       curve("closed form: |lambda|^k of the scheme, through step 30", step, growth, CurveStyle::dashed)},
+      "Past omega dt = 2 the scheme has a root of modulus above one and the motion grows by |lambda| each step "
+      "from round-off-sized beginnings; the metric is the growth per step between steps 30 and 70.");
+    f.log_y = true;
+    out.figures.push_back(std::move(f));
     out.metrics.push_back(relative_error(
       "omega dt = 2.02: growth factor per step vs |lambda| of the scheme", observed, lambda, 1e-3, ToleranceClass::B,
       "the growing mode dominates after 40 steps; the other decays like 1/|lambda|^k"));
@@ -265,6 +296,7 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> radius(0.7 * R, 1.3 * R), stiff(0.5, 2.0), unit(-1, 1);
     double worst = 0, mean = 0;
+    std::vector<double> balls, ratios;
     const int samples = ctx.quick ? 12 : 40;
     for (int s = 0; s < samples; ++s)
     {
@@ -299,7 +331,18 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
       const double ratio = sim.critical_time_step() / dem::exact_stability_limit(sim);
       worst = std::max(worst, ratio);
       mean += ratio / samples;
+      balls.push_back(static_cast<double>(sim.particles().size()));
+      ratios.push_back(ratio);
     }
+    out.figures.push_back(make_figure(
+      "bound_against_exact", "The automatic step's bound against the exact stability limit", "balls [-]",
+      "bound / exact limit [-]",
+      {curve("random assemblies", balls, ratios, CurveStyle::points),
+       curve("exact limit (the bound must stay at or below it)", {2.0, 15.0}, {1.0, 1.0}, CurveStyle::dashed)},
+      "Each point one random cluster (radii, stiffnesses, held balls, a floor); the exact limit is "
+      "2 / sqrt(lambda_max(M^-1 K)) from an eigen-solve. The engine then takes a safety fraction of the bound."));
+    out.figures.back().x_margins = true;
+    out.figures.back().y_top_at_least = 1.2;
     // Where the bound is exact (a pair, a ball on a wall) the ratio is 1 up
     // to the eigen-solver's round-off (~1e-14 relative).
     out.metrics.push_back(bound("random assemblies: max of bound / exact stability limit", worst, 1.0 + 1e-9, false,
