@@ -260,6 +260,32 @@ CheckOutcome check_affine_moduli(const CheckContext & /*ctx*/)
       out.metrics.push_back(absolute_error(tag + "nu = (kn - ks) / (4 kn + ks)", exact.poisson, sum.poisson, 1e-12,
                                            ToleranceClass::A, reason));
     }
+  {
+    std::vector<double> ratio, closed, fine, icosahedron, dodecahedron;
+    for (int k = 0; k <= 50; ++k)
+    {
+      fine.push_back(k / 50.0);
+      closed.push_back(continuum::affine_moduli(packing, kn, fine.back() * kn).poisson);
+    }
+    for (const double r : {0.0, 0.1, 0.25, 0.5, 0.75, 1.0})
+    {
+      ratio.push_back(r);
+      icosahedron.push_back(discrete_affine_moduli(icosahedron_normals(), packing, kn, r * kn).poisson);
+      dodecahedron.push_back(discrete_affine_moduli(dodecahedron_normals(), packing, kn, r * kn).poisson);
+    }
+    Figure f =
+      make_figure("affine_poisson", "Affine Poisson's ratio against the contacts' stiffness ratio", "k_s / k_n [-]",
+                  "Poisson's ratio [-]",
+                  {curve("sum over the icosahedron's vertices", ratio, icosahedron, CurveStyle::points),
+                   curve("sum over the dodecahedron's vertices (open)", ratio, dodecahedron, CurveStyle::points),
+                   curve("closed form (k_n - k_s) / (4 k_n + k_s)", fine, closed, CurveStyle::dashed)},
+                  "The orientation average of the closed forms against exact sums over two sets of contact normals; "
+                  "Poisson's ratio depends on the stiffness ratio alone (1/4 for frictionless, 0 at k_s = k_n).");
+    f.curves[1].point_type = 6; // an open circle around the icosahedron's filled one
+    f.x_margins = true;
+    f.key = "top right";
+    out.figures.push_back(std::move(f));
+  }
   // Same-shape Burger's contacts: every spring and dashpot of the solid's
   // Young chain is the affine E of contacts with that constant (normal) and
   // r times it (shear).
