@@ -74,4 +74,10 @@ struct Figure
 /// A figure of curves on linear axes.
 Figure make_figure(std::string name, std::string title, std::string x_label, std::string y_label,
                    std::vector<Curve> curves, std::string caption = "");
+
+/// Adds a band to `f`: two horizontal lines from x0 to x1 at `low` and
+/// `high` (a tolerance, a +- envelope), one title in the key, one colour
+/// (the place of the first line in the figure).
+void add_band(Figure &f, std::string title, double x0, double x1, double low, double high,
+              CurveStyle style = CurveStyle::dashed);
 } // namespace demvv

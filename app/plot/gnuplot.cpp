@@ -35,25 +35,32 @@ Curve thinned(Curve c, std::size_t at_most)
   if (at_most < 2 || n <= at_most)
     return c;
   const std::size_t every = (n - 1 + at_most - 2) / (at_most - 1);
-  Curve t = c;
-  t.x.clear();
-  t.y.clear();
-  t.y_error.clear();
+  std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < n; k += every)
+    kept.push_back(k);
+  if (kept.back() != n - 1)
+    kept.push_back(n - 1);
+  const auto pick = [&kept](std::vector<double> &v)
   {
-    t.x.push_back(c.x[k]);
-    t.y.push_back(c.y[k]);
-    if (!c.y_error.empty())
-      t.y_error.push_back(c.y_error[k]);
-  }
-  if ((n - 1) % every != 0)
-  {
-    t.x.push_back(c.x.back());
-    t.y.push_back(c.y.back());
-    if (!c.y_error.empty())
-      t.y_error.push_back(c.y_error.back());
-  }
-  return t;
+    if (v.empty())
+      return;
+    std::vector<double> picked;
+    for (std::size_t k : kept)
+      picked.push_back(v[k]);
+    v = std::move(picked);
+  };
+  pick(c.x);
+  pick(c.y);
+  pick(c.y_error);
+  return c;
+}
+
+void add_band(Figure &f, std::string title, double x0, double x1, double low, double high, CurveStyle style)
+{
+  const int colour = static_cast<int>(f.curves.size()) + 1;
+  f.curves.push_back(curve(std::move(title), {x0, x1}, {high, high}, style));
+  f.curves.push_back(curve("", {x0, x1}, {low, low}, style));
+  f.curves[f.curves.size() - 2].colour = f.curves.back().colour = colour;
 }
 
 Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale,

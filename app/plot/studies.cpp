@@ -63,9 +63,7 @@ Figure gci_figure(const std::string &name, const std::string &quantity, const Gc
   f.curves.push_back(curve("Richardson curve (observed order)", hs, richardson, CurveStyle::dashed));
   f.curves.push_back(curve("extrapolated value", {0.0}, {levels.extrapolated}, CurveStyle::points));
   const double band = levels.gci_fine * std::abs(f1);
-  f.curves.push_back(curve("fine value +- GCI_fine", {0.0, h_max}, {f1 + band, f1 + band}, CurveStyle::line));
-  f.curves.push_back(curve("", {0.0, h_max}, {f1 - band, f1 - band}, CurveStyle::line));
-  f.curves[3].colour = f.curves[4].colour = 4;
+  add_band(f, "fine value +- GCI_fine", 0.0, h_max, f1 - band, f1 + band, CurveStyle::line);
   for (Curve &c : f.curves)
   {
     c.x_scale = h_scale;

@@ -230,13 +230,10 @@ CheckOutcome check_burgers_pull(const CheckContext &ctx)
   const double scale = p.law.maxwell_viscosity * p.speed, tolerance = pull_tolerance(p);
   for (std::size_t k = 0; k < closed.size(); ++k)
     residual.push_back((p.tension[k] - closed[k]) / scale);
-  out.figures.push_back(make_figure(
-    "pull_residual", "Residual of the pull against eq. 7.18", "extension [mm]", "(F - F_7.18) / (C_inf v) [-]",
-    {curve("residual", p.extension, residual),
-     curve("tolerance", {p.extension.front(), p.extension.back()}, {tolerance, tolerance}, CurveStyle::dashed),
-     curve("", {p.extension.front(), p.extension.back()}, {-tolerance, -tolerance}, CurveStyle::dashed)},
-    "The metric is the largest |residual|; it passes inside the dashed band."));
-  out.figures.back().curves[2].colour = 2;
+  out.figures.push_back(make_figure("pull_residual", "Residual of the pull against eq. 7.18", "extension [mm]",
+                                    "(F - F_7.18) / (C_inf v) [-]", {curve("residual", p.extension, residual)},
+                                    "The metric is the largest |residual|; it passes inside the dashed band."));
+  add_band(out.figures.back(), "tolerance", p.extension.front(), p.extension.back(), -tolerance, tolerance);
   for (Figure &f : out.figures)
     for (Curve &c : f.curves)
       c.x_scale = 1e3;

@@ -243,13 +243,11 @@ CheckOutcome check_critical_step(const CheckContext &ctx)
     const double envelope = v0 / omega / std::sqrt(1 - h * h / 4);
     out.figures.push_back(make_figure(
       "stable_side", "Just inside the limit: omega dt = 1.98", "step", "displacement [m]",
-      {curve("demvv", step, displacement, CurveStyle::markers_and_line),
-       curve("closed form: +-(v0/omega) / sqrt(1 - (omega dt)^2/4)", {step.front(), step.back()}, {envelope, envelope},
-             CurveStyle::dashed),
-       curve("", {step.front(), step.back()}, {-envelope, -envelope}, CurveStyle::dashed)},
+      {curve("demvv", step, displacement, CurveStyle::markers_and_line)},
       "The first 200 steps: the centred-difference oscillator flips sign almost every step but stays within "
       "the discrete solution's amplitude, seven times v0/omega this close to the limit."));
-    out.figures.back().curves[2].colour = 2;
+    add_band(out.figures.back(), "closed form: +-(v0/omega) / sqrt(1 - (omega dt)^2/4)", step.front(), step.back(),
+             -envelope, envelope);
     out.figures.back().y_top_at_least = 1.6 * envelope; // room for the key
     out.metrics.push_back(relative_error("omega dt = 1.98: largest amplitude vs (v0/omega)/sqrt(1 - (omega dt)^2/4)",
                                          largest, v0 / omega / std::sqrt(1 - h * h / 4), 0.01, ToleranceClass::B,

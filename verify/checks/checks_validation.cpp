@@ -221,12 +221,10 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
   out.figures.push_back(make_figure(
     "calibration_path", "Calibration: peak stress at 10 C, 0.1 1/s against the bond strength",
     "bond strength (normal = shear) [N]", "peak stress [MPa]",
-    {path, curve("target: 10.3 MPa (eq. 4.4)", {*low, *high}, {target, target}, CurveStyle::dashed),
-     curve("the law's assumed 10 %", {*low, *high}, {target + band, target + band}, CurveStyle::dashed),
-     curve("", {*low, *high}, {target - band, target - band}, CurveStyle::dashed)},
+    {path, curve("target: 10.3 MPa (eq. 4.4)", {*low, *high}, {target, target}, CurveStyle::dashed)},
     "Each point is a centre the fit evaluated (the mean over seeds, +- 2 standard errors); the fit stops where "
     "the mean meets the target within its standard error. Agreement here is by construction."));
-  out.figures.back().curves[3].colour = 3;
+  add_band(out.figures.back(), "the law's assumed 10 %", *low, *high, target - band, target + band);
   out.figures.back().x_margins = true;
   out.figures.back().key = "bottom right";
   out.notes.push_back(
