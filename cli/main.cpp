@@ -1,7 +1,7 @@
 // demvv: the command-line entry point.
 //
 //   demvv run DECK [--out DIR [--replace]] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
-//   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
+//   demvv sweep BASE_DECK --vary SECTION/KEY[+KEY...]=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
 //   demvv time-step BASE_DECK [--safety s1,s2,s3,...] [--seeds N] [--set SECTION/KEY=VALUE]... --out DIR
 //   demvv calibrate BASE_DECK --fit KEY[+KEY...]=START --target QUANTITY=VALUE[,U] [--at KEY=VALUE] [--seeds N] --out DIR
 //   demvv defaults KIND
@@ -129,7 +129,7 @@ int main(int argc, char **argv)
   sweep_cmd->add_option("BASE_DECK", sweep.base_deck, "The deck every member starts from")->required();
   sweep_cmd->add_option("--vary", sweep.vary,
                         "SECTION/KEY=v1,v2,...: the values of one deck entry (repeatable; members are the "
-                        "product)");
+                        "product); SECTION/KEY+SECTION/KEY=v1,...: entries tied to one value each");
   sweep_cmd
     ->add_option("--seeds", sweep.seeds,
                  "Run each combination with seeds 1..N (bond strengths and, for a sample from a prepare "

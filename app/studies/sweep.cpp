@@ -37,9 +37,11 @@ namespace
 namespace fs = std::filesystem;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
+/// One --vary: its entries (several, tied: each set to the same value)
+/// and their values.
 struct Varied
 {
-  std::string key;
+  std::vector<std::string> keys;
   std::vector<std::string> values;
 };
 
@@ -69,17 +71,25 @@ std::vector<std::string> split(const std::string &text, char by)
   return parts;
 }
 
-/// "SECTION/KEY=v1,v2,...", checked against the base deck.
+/// "SECTION/KEY[+SECTION/KEY...]=v1,v2,...", checked against the base deck.
 Varied parse_vary(const std::string &arg, const Deck &base)
 {
   const auto eq = arg.find('=');
-  const std::string key = eq == std::string::npos ? "" : trimmed(arg.substr(0, eq));
-  if (key.empty() || key.find('/') == std::string::npos)
-    throw DeckError("--vary '" + arg + "': expected SECTION/KEY=v1,v2,... (a deck entry and its values)");
-  if (!deck_declares(base, key))
-    throw DeckError("--vary '" + arg + "': " + base.path() + " (kind " + base.kind() + ") has no entry '" + key +
-                    "': expected an entry that `demvv defaults " + base.kind() + "` lists");
-  Varied v{key, {}};
+  Varied v;
+  for (const std::string &part : split(eq == std::string::npos ? "" : arg.substr(0, eq), '+'))
+  {
+    const std::string key = trimmed(part);
+    if (key.empty() || key.find('/') == std::string::npos)
+      throw DeckError("--vary '" + arg +
+                      "': expected SECTION/KEY[+SECTION/KEY...]=v1,v2,... (deck entries and their values)");
+    if (!deck_declares(base, key))
+      throw DeckError("--vary '" + arg + "': " + base.path() + " (kind " + base.kind() + ") has no entry '" + key +
+                      "': expected an entry that `demvv defaults " + base.kind() + "` lists");
+    v.keys.push_back(key);
+  }
+  if (v.keys.empty())
+    throw DeckError("--vary '" + arg +
+                    "': expected SECTION/KEY[+SECTION/KEY...]=v1,v2,... (deck entries and their values)");
   for (const std::string &value : split(arg.substr(eq + 1), ','))
   {
     const std::string t = trimmed(value);
@@ -502,21 +512,24 @@ StudyAbscissa study_abscissa(const SweepPlan &plan, const Deck &base, const std:
       balls.push_back(ensemble_statistics(counts).mean);
     }
     const std::string unit = base.unit(plan.keys[0]);
+    std::string factor;
+    for (std::size_t j = 0; j < plan.first_factor_keys; ++j)
+      factor += (j == 0 ? "" : " + ") + plan.keys[j];
     if (finite(values) && distinct(values) > 1)
     {
       a.x = values;
-      a.label = plan.keys[0] + (unit.empty() ? "" : " [" + unit + "]");
+      a.label = factor + (unit.empty() ? "" : " [" + unit + "]");
     }
     else if (finite(balls) && distinct(balls) == names.size() && names.size() > 1)
     {
       a.x = balls;
-      a.label = "balls in the sample [-] (" + plan.keys[0] + ")";
+      a.label = "balls in the sample [-] (" + factor + ")";
     }
   }
   if (!a.x.empty())
   {
     for (std::size_t p = 0; p < points; ++p)
-      a.series[p] = entries(p, 1);
+      a.series[p] = entries(p, plan.first_factor_keys);
     const double lo = *std::min_element(a.x.begin(), a.x.end()), hi = *std::max_element(a.x.begin(), a.x.end());
     a.log = lo > 0 && hi >= 20 * lo;
     return a;
@@ -867,20 +880,25 @@ int command_sweep(const SweepOptions &o)
   for (const std::string &arg : o.vary)
   {
     const Varied v = parse_vary(arg, base);
-    if (std::find(plan.keys.begin(), plan.keys.end(), v.key) != plan.keys.end())
-      throw DeckError("--vary '" + arg + "': '" + v.key + "' is varied twice: expected each key once");
-    if (o.seeds > 0 && v.key.size() >= 5 && v.key.compare(v.key.size() - 5, 5, "/seed") == 0)
-      throw DeckError("--vary '" + arg + "' with --seeds " + std::to_string(o.seeds) +
-                      ": --seeds sets the seeds: expected one of them");
-    // The product, the first --vary outermost.
+    for (const std::string &key : v.keys)
+    {
+      if (std::find(plan.keys.begin(), plan.keys.end(), key) != plan.keys.end())
+        throw DeckError("--vary '" + arg + "': '" + key + "' is varied twice: expected each key once");
+      if (o.seeds > 0 && key.size() >= 5 && key.compare(key.size() - 5, 5, "/seed") == 0)
+        throw DeckError("--vary '" + arg + "' with --seeds " + std::to_string(o.seeds) +
+                        ": --seeds sets the seeds: expected one of them");
+      plan.keys.push_back(key);
+    }
+    if (&arg == &o.vary.front())
+      plan.first_factor_keys = v.keys.size();
+    // The product, the first --vary outermost; tied entries take one value.
     std::vector<std::vector<std::string>> points;
     for (const std::vector<std::string> &point : plan.points)
       for (const std::string &value : v.values)
       {
         points.push_back(point);
-        points.back().push_back(value);
+        points.back().insert(points.back().end(), v.keys.size(), value);
       }
-    plan.keys.push_back(v.key);
     plan.points = points;
   }
   const SweepOutcome outcome = run_sweep(plan, o.settings);

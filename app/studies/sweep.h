@@ -84,7 +84,7 @@ struct SweepSettings
 struct SweepOptions
 {
   std::string base_deck;
-  std::vector<std::string> vary; ///< "SECTION/KEY=v1,v2,..."
+  std::vector<std::string> vary; ///< "SECTION/KEY[+SECTION/KEY...]=v1,v2,..."
   int seeds = 0;                 ///< 0: the deck's own seeds
   SweepSettings settings;
 };
@@ -101,6 +101,9 @@ struct SweepPlan
   std::vector<std::vector<std::string>> points;
   int seeds = 0;      ///< seeds per point; 0: the deck's own
   int first_seed = 1; ///< the seeds are first_seed ... first_seed + seeds - 1
+  /// keys[0 .. first_factor_keys) are tied (one value each point): the
+  /// first factor, the figures' abscissa.
+  std::size_t first_factor_keys = 1;
 };
 
 /// One member's outcome, read from its run directory: status "pending",

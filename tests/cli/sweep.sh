@@ -125,8 +125,36 @@ one_line "$work/err" "unknown key"
 "$demvv" sweep "$work/base.prm" --vary balls/friction=0.1,0.3,1e-1 --out "$work/d" 2>"$work/err"
 [ $? -eq 2 ] && grep -q "given twice" "$work/err" && [ ! -e "$work/d" ] || fail "a value varied twice: $(cat "$work/err")"
 one_line "$work/err" "value twice"
+"$demvv" sweep "$work/base.prm" --vary "balls/friction+balls/friction=0.1" --out "$work/d" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "varied twice" "$work/err" && [ ! -e "$work/d" ] || fail "a key tied to itself: $(cat "$work/err")"
+one_line "$work/err" "key tied to itself"
+"$demvv" sweep "$work/base.prm" --vary "bonds/normal strength+=3" --out "$work/d" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "deck entries and their values" "$work/err" && [ ! -e "$work/d" ] || fail "an empty tied key: $(cat "$work/err")"
+one_line "$work/err" "empty tied key"
 sweep --out "$work/a" --replace --quiet 2>"$work/err" || fail "--replace of a sweep directory failed: $(cat "$work/err")"
 [ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] || fail "--replace changed the table"
+
+# Entries tied by '+' take one value each point: one factor of the
+# product, a column each, every member's deck setting both.
+"$demvv" sweep "$work/base.prm" --vary "bonds/normal strength+bonds/shear strength=20,40" --vary balls/friction=0.2,0.4 \
+  --out "$work/tied" --threads 2 --quiet 2>"$work/err" || fail "the sweep of tied entries failed: $(cat "$work/err")"
+python3 - "$work/tied" <<'EOF' || fail "tied entries were not set together"
+import csv, glob, re, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(l for l in open(d + "/sweep.csv") if not l.startswith("#")))
+assert [(r["bonds/normal strength"], r["bonds/shear strength"], r["balls/friction"]) for r in rows] == [
+    ("20", "20", "0.2"), ("20", "20", "0.4"), ("40", "40", "0.2"), ("40", "40", "0.4")], rows
+assert all(r["status"] == "completed" for r in rows), rows
+for r in rows:
+    deck = open(glob.glob(d + "/members/" + r["member"] + "_*/deck.prm")[0]).read()
+    for key in ("normal strength", "shear strength"):
+        assert re.search(r"set " + key + r" *= " + r["bonds/normal strength"] + r"\n", deck), (key, r["member"])
+EOF
+if command -v gnuplot >/dev/null; then
+  grep -q "bonds/normal strength + bonds/shear strength" "$work/tied/plots/peak_stress.gp" &&
+    grep -q "balls/friction = 0.4" "$work/tied/plots/peak_stress.gp" ||
+    fail "the tied sweep's figure is not drawn against both entries, one series per friction"
+fi
 
 # Seeds of a sample from a prepare deck: each seed prepares its own
 # packing (cached beside the deck), which its member's deck.prm names.
