@@ -4,6 +4,7 @@
 #include "app/io/input.h"
 #include "app/io/output.h"
 #include "app/io/paraview.h"
+#include "app/io/section.h"
 #include "app/kinds/deck_kinds.h"
 
 #include <omp.h>
@@ -176,15 +177,32 @@ PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options)
   // With output/paraview stages, a frame at the end of each stage (Figs
   // 5.2, 5.3, 5.5): paraview/stages/, the collection's timestep the stage's
   // number.
+  // And always its vertical section (app/io/section.h) to
+  // preparation_sections.csv, the stage's number in the first column: the
+  // figures of the first, second and last stage draw it.
   std::unique_ptr<ParaviewWriter> stage_frames;
+  std::unique_ptr<CsvSeries> sections;
   if (dir && spec.paraview_stages)
     stage_frames = std::make_unique<ParaviewWriter>(dir->path("paraview/stages"));
+  if (dir)
+  {
+    std::vector<std::string> columns = section_columns();
+    columns.insert(columns.begin(), "stage");
+    sections = std::make_unique<CsvSeries>(dir->path("preparation_sections.csv"),
+                                           "demvv prepare '" + deck.name + "': SI units; at the end of each stage (" +
+                                             "its name in summary.json, preparation_stages), " + section_note(),
+                                           columns);
+  }
   nlohmann::json stages = nlohmann::json::array();
   const auto at_stage = [&](const dem::Simulation &sim, const std::string &name)
   {
-    if (!stage_frames)
+    if (!sections)
       return;
-    stage_frames->write_frame(sim, double(stages.size()));
+    const double stage = double(stages.size());
+    for (const SectionCircle &c : vertical_section(sim.particles()))
+      sections->write({stage, c.x, c.z, c.radius});
+    if (stage_frames)
+      stage_frames->write_frame(sim, stage);
     stages.push_back({{"frame", stages.size()}, {"stage", name}, {"time_s", sim.time()}});
   };
 
@@ -208,6 +226,8 @@ PrepareResult run_prepare(const PrepareSpec &spec, const RunOptions &options)
   }
   result.status.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json summary = {{"kind", "prepare"}, {"title", spec.title}, {"log", log}};
+  if (sections)
+    summary["preparation_stages"] = stages;
   if (stage_frames)
     summary["paraview_stages"] = {{"folder", "paraview/stages"},
                                   {"frames", stages},

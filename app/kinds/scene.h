@@ -12,7 +12,8 @@
 //                  of the balls on every wall
 //   particles.csv  tracked balls: position, velocity, spin, resultant force
 //   contacts.csv   tracked pairs: overlap, normal and shear force, bond state
-//   bond_breaks.csv every bond break (time, pair, mode)
+//   bond_breaks.csv every bond break (time, pair, mode, the point on the
+//                   pair's line of centres)
 // plus summary.json (with how many steps resolve the shortest contact
 // period: the automatic step is a stability bound, not an accuracy choice)
 // and deck.prm.

@@ -3,6 +3,7 @@
 #include "app/decks/deck_sections.h"
 #include "app/io/input.h"
 #include "app/io/paraview.h"
+#include "app/io/section.h"
 #include "app/kinds/prepare.h"
 #include "app/run/analysis.h"
 #include "app/run/numerical_uncertainty.h"
@@ -135,6 +136,16 @@ void write_gauge_study(const std::string &path, const Series &series, const std:
     const double at_end = all.back() != 0 ? 100 * (band.back() - all.back()) / all.back() : std::nan("");
     out.write({study[k], double(gauges[k].size()), at_end, n ? sum / n : std::nan("")});
   }
+}
+
+/// section.csv: the sample's vertical section at the end of the run
+/// (app/io/section.h); the section figure marks on it the bonds that broke
+/// near the plane.
+void write_end_section(const std::string &path, const dem::Simulation &sim, const std::string &convention)
+{
+  CsvSeries out(path, convention + "; at the end of the run, " + section_note(), section_columns());
+  for (const SectionCircle &c : vertical_section(sim.particles()))
+    out.write({c.x, c.z, c.radius});
 }
 
 const std::vector<std::string> series_columns = {"time_s",
@@ -534,6 +545,8 @@ public:
     summary["spatial"] = spatial_json(sim);
     if (dir && !spec_.gauge_study.empty() && series_.rows() > 0)
       write_gauge_study(dir->path("gauge_study.csv"), series_, spec_.gauge_study, study_gauges_, convention());
+    if (dir)
+      write_end_section(dir->path("section.csv"), sim, convention());
     return summary;
   }
 

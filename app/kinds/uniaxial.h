@@ -12,8 +12,9 @@
 // inertial number, energies; a row every `output/strain interval` of axial
 // strain), summary.json (peak stress, strain at peak, strain at the maximum
 // breakage rate, initial modulus and Poisson's ratio fitted over the stated
-// strain window, counts, timings, provenance), bond_breaks.csv, deck.prm
-// and optional ParaView frames.
+// strain window, counts, timings, provenance), bond_breaks.csv, section.csv
+// (the balls the plane through the axis cuts, at the end: app/io/section.h),
+// deck.prm and optional ParaView frames.
 #pragma once
 
 #include "app/decks/deck.h"

@@ -23,6 +23,7 @@ enum class CurveStyle
   dashed, ///< a dashed line: a reference (closed form, law, continuum)
   points, ///< markers only: discrete measurements (levels of a study)
   markers_and_line,
+  circles, ///< a circle of each point's radius about it (a ball's section)
 };
 
 struct Curve
@@ -38,6 +39,9 @@ struct Curve
   /// ...with, when given, a half-width for each y (drawn as error bars,
   /// e.g. a 95 % confidence interval)...
   std::vector<double> y_error;
+  /// ...or, drawn as CurveStyle::circles, a radius for each point (in x's
+  /// units, scaled by x_scale)...
+  std::vector<double> radius;
   /// ...or two columns of a CSV file, its path relative to the figure's folder.
   std::string file, x_column, y_column;
 

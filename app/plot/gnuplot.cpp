@@ -142,6 +142,8 @@ std::string style_clause(CurveStyle s, int colour, int point_type)
     return "with points" + pt + " ps 0.9" + lc;
   case CurveStyle::markers_and_line:
     return "with linespoints lw 2" + pt + " ps 0.9" + lc;
+  case CurveStyle::circles:
+    return "with circles" + lc + " fs transparent solid 0.3";
   }
   return "with lines";
 }
@@ -282,9 +284,11 @@ std::string gnuplot_script(const Figure &f)
     o << (first ? "" : ", \\\n     ");
     first = false;
     const bool bars = in_memory(c) && !c.y_error.empty();
+    const bool circles = in_memory(c) && c.style == CurveStyle::circles;
     if (in_memory(c))
       o << quoted(f.name + ".csv") << " index " << block++ << " using " << using_item("1", c.x_scale) << ":"
-        << using_item("2", c.y_scale) << (bars ? ":" + using_item("3", c.y_scale) : "");
+        << using_item("2", c.y_scale) << (bars ? ":" + using_item("3", c.y_scale) : "")
+        << (circles ? ":" + using_item("3", c.x_scale) : "");
     else
       o << quoted(c.file) << " using " << using_item(c.x_column, c.x_scale) << ":" << using_item(c.y_column, c.y_scale);
     const int lc = c.colour ? c.colour : colour;
@@ -309,7 +313,8 @@ void write_figure_files(const Figure &f, const std::string &dir)
     any = true;
     for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k)
       data << number(c.x[k]) << "," << number(c.y[k])
-           << (c.y_error.empty() ? "" : "," + number(k < c.y_error.size() ? c.y_error[k] : 0.0)) << "\n";
+           << (c.y_error.empty() ? "" : "," + number(k < c.y_error.size() ? c.y_error[k] : 0.0))
+           << (c.style == CurveStyle::circles ? "," + number(k < c.radius.size() ? c.radius[k] : 0.0) : "") << "\n";
   }
   if (any)
     write_atomically(dir + "/" + f.name + ".csv", data.str());

@@ -303,6 +303,96 @@ void gci_figures(const std::string &dir, const nlohmann::json &summary, std::vec
   }
 }
 
+/// The balls of a section table (app/io/section.h) in rows [from, to) as
+/// circles, in mm.
+Curve section_circles(const CsvTable &t, std::size_t from, std::size_t to)
+{
+  Curve c = curve("balls (cut by y = 0)", {}, {}, CurveStyle::circles);
+  for (std::size_t r = from; r < to; ++r)
+  {
+    c.x.push_back(t.get(r, "x_m"));
+    c.y.push_back(t.get(r, "z_m"));
+    c.radius.push_back(t.get(r, "section_radius_m"));
+  }
+  c.x_scale = c.y_scale = 1e3;
+  c.colour = 8;
+  return c;
+}
+
+Figure section_picture(std::string name, std::string title, std::string caption)
+{
+  Figure f = make_figure(std::move(name), std::move(title), "x [mm]", "z [mm]", {}, std::move(caption));
+  f.equal_axes = true;
+  f.key = "outside right top";
+  return f;
+}
+
+/// The sample's section at the end of the run (section.csv) with the bonds
+/// that broke within one ball radius of the plane (bond_breaks.csv) marked
+/// by mode, where they broke: where the sample cracked (Figs. 7.7, A.3).
+void section_figure(const std::string &dir, std::vector<Figure> &out)
+{
+  const RunTable cut(dir, "section.csv");
+  if (!cut.has("section_radius_m"))
+    return;
+  Figure f = section_picture("section", "Section at the end, with broken bonds",
+                             "The balls the plane y = 0 cuts, as the circles they leave on it, and the bonds broken "
+                             "within one ball radius of the plane, at the point where each broke.");
+  f.curves.push_back(section_circles(*cut.table, 0, cut.table->rows()));
+  const std::vector<double> &r = f.curves.back().radius;
+  const double near = *std::max_element(r.begin(), r.end());
+  const RunTable breaks(dir, "bond_breaks.csv");
+  const char *modes[] = {"broken: tension", "broken: shear", "broken: displacement"};
+  for (int mode = 1; mode <= 3 && breaks.has("y_m"); ++mode)
+  {
+    Curve c = curve(modes[mode - 1], {}, {}, CurveStyle::points);
+    for (std::size_t k = 0; k < breaks.table->rows(); ++k)
+      if (breaks.table->get(k, "mode") == mode && std::abs(breaks.table->get(k, "y_m")) < near)
+      {
+        c.x.push_back(breaks.table->get(k, "x_m"));
+        c.y.push_back(breaks.table->get(k, "z_m"));
+      }
+    c.x_scale = c.y_scale = 1e3;
+    c.colour = mode;
+    c.point_type = mode == 2 ? 5 : 7;
+    if (!c.x.empty())
+      f.curves.push_back(std::move(c));
+  }
+  out.push_back(std::move(f));
+}
+
+/// Thesis Figs. 5.2-5.3: the packing's section after the first stage (the
+/// balls placed at half radius), the second (grown) and the last
+/// (released), from preparation_sections.csv; every stage is in the file.
+void preparation_section_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
+{
+  const RunTable cut(dir, "preparation_sections.csv");
+  const nlohmann::json stages = summary.value("preparation_stages", nlohmann::json::array());
+  if (!cut.has("stage") || !stages.is_array() || stages.empty())
+    return;
+  const CsvTable &t = *cut.table;
+  std::vector<std::size_t> shown = {0, 1, stages.size() - 1};
+  shown.erase(std::unique(shown.begin(), shown.end()), shown.end());
+  for (const std::size_t stage : shown)
+  {
+    std::size_t from = 0;
+    while (from < t.rows() && t.get(from, "stage") < double(stage))
+      ++from;
+    std::size_t to = from;
+    while (to < t.rows() && t.get(to, "stage") == double(stage))
+      ++to;
+    if (to == from || stage >= stages.size() || !stages[stage].is_object())
+      continue;
+    Figure f =
+      section_picture("preparation_stage_" + std::to_string(stage),
+                      "Section, stage " + std::to_string(stage) + ": " + stages[stage].value("stage", std::string()),
+                      "The balls the plane y = 0 cuts, as the circles they leave on it (every stage's "
+                      "section is in preparation_sections.csv).");
+    f.curves.push_back(section_circles(t, from, to));
+    out.push_back(std::move(f));
+  }
+}
+
 /// Thesis Fig. 5.5: the mean stress of the packed sample against the
 /// reduction of every radius (stage 4 of the preparation), step by step,
 /// with the stress target the steps aim below.
@@ -376,6 +466,7 @@ double summary_number(const nlohmann::json &j, const std::string &key, std::size
 void uniaxial_run_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
 {
   uniaxial_figures(dir, out);
+  section_figure(dir, out);
   // The stress-strain figure marks what the summary reports from it: the
   // peak (the largest row) and the initial-modulus fit over its window, the
   // fitted line itself (slope and intercept), so a reader sees which part
@@ -429,9 +520,10 @@ void mms_run_figures(const std::string &dir, const nlohmann::json &summary, std:
   mms_figures(dir, summary, out);
 }
 
-void prepare_run_figures(const std::string &, const nlohmann::json &summary, std::vector<Figure> &out)
+void prepare_run_figures(const std::string &dir, const nlohmann::json &summary, std::vector<Figure> &out)
 {
   prepare_figures(summary, out);
+  preparation_section_figures(dir, summary, out);
 }
 
 void compare_run_figures(const std::string &dir, const nlohmann::json &, std::vector<Figure> &out)

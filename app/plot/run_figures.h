@@ -4,7 +4,8 @@
 //   uniaxial   stress-strain (with each platen's stress), stress and bonds
 //              broken against strain (the pair of thesis Fig. 6.1), radial
 //              strain, bonds broken by mode, energy ledger, time step,
-//              quasi-static indicators
+//              quasi-static indicators, the sample's section at the end
+//              with the bonds broken near it
 //   scene      energy ledger, time step, contacts and bonds, wall forces
 //   burgers_ode force and displacement with their closed form, internal
 //              displacements
@@ -14,7 +15,9 @@
 //   mms        errors against the refined size on log-log axes, with the
 //              theoretical orders
 //   prepare    mean stress against the reduction of the radii (thesis Fig.
-//              5.5); ParaView frames in paraview/ show the sample
+//              5.5); the packing's section after the first, second and last
+//              stage (Figs. 5.2-5.3); ParaView frames in paraview/ show the
+//              sample in 3-D
 //
 // Figures read the run's own CSV files (scripts in RUN_DIR/plots refer to
 // ../series.csv), so a figure of an older run is drawn from its data as it

@@ -68,6 +68,8 @@ const std::vector<std::string> &output_entries(const std::string &what)
                                                "convergence.csv",
                                                "convergence.txt",
                                                "gauge_study.csv",
+                                               "section.csv",
+                                               "preparation_sections.csv",
                                                "mesh.csv",
                                                "sample.json",
                                                "checkpoint",
@@ -363,9 +365,11 @@ RunFiles::RunFiles(const RunOptions &options, const DeckRecord &deck, int thread
     return;
   dir_ = std::make_unique<RunDirectory>(options.out_dir, deck, threads, seed, options.resume);
   if (!options.resume)
-    breaks_ = std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"),
-                                          convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A)",
-                                          std::vector<std::string>{"time_s", "first", "second", "mode"});
+    breaks_ =
+      std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"),
+                                  convention + "; mode 1 tension, 2 shear, 3 displacement (appendix A); "
+                                               "x, y, z: the point on the pair's line of centres at the break",
+                                  std::vector<std::string>{"time_s", "first", "second", "mode", "x_m", "y_m", "z_m"});
   if (paraview)
     paraview_ = std::make_unique<ParaviewWriter>(dir_->path("paraview"));
 }
@@ -388,7 +392,8 @@ std::vector<dem::BondBreak> RunFiles::drain_breaks(dem::Simulation &sim)
     for (const dem::BondBreak &b : breaks)
     {
       const dem::Index a = ball_id(b.first), c = ball_id(b.second);
-      breaks_->write({b.time, double(std::min(a, c)), double(std::max(a, c)), double(static_cast<int>(b.mode))});
+      breaks_->write({b.time, double(std::min(a, c)), double(std::max(a, c)), double(static_cast<int>(b.mode)),
+                      b.point.x(), b.point.y(), b.point.z()});
     }
   if (paraview_)
     paraview_->add_breaks(breaks);
@@ -413,7 +418,7 @@ void RunFiles::resume(const nlohmann::json &state)
   if (!dir_)
     return;
   breaks_ =
-    std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), 4, state.at("bond_breaks_bytes").get<std::uintmax_t>());
+    std::make_unique<CsvSeries>(dir_->path("bond_breaks.csv"), 7, state.at("bond_breaks_bytes").get<std::uintmax_t>());
   if (paraview_ && state.contains("paraview"))
     paraview_->restore(state.at("paraview"));
 }

@@ -3,6 +3,7 @@
 // Richardson curve passes through the levels it was computed from.
 #include "app/decks/deck.h"
 #include "app/io/output.h"
+#include "app/io/section.h"
 #include "app/kinds/continuum_gci.h"
 #include "app/kinds/deck_kinds.h"
 #include "app/kinds/uniaxial.h"
@@ -18,6 +19,8 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <sstream>
+#include <vector>
 
 namespace
 {
@@ -71,6 +74,55 @@ TEST_CASE("gnuplot draws a figure held in memory as SVG and reports a figure wit
   CHECK(fs::exists(dir / "parabola.csv"));
   CHECK_FALSE(drawn[1].drawn());
   CHECK(contains(drawn[1].problem, "no data"));
+}
+
+TEST_CASE("a section cuts the balls the plane y = 0 meets, each in the circle of radius sqrt(R^2 - y^2)", "[plot]")
+{
+  dem::ParticleStore balls;
+  const double r = 1e-3;
+  for (const double y : {0.0, 0.6e-3, -0.8e-3, 1e-3, 1.5e-3})
+  {
+    dem::BallSpec b;
+    b.position = dem::Vec3(2e-3, y, 5e-3);
+    b.radius = r;
+    balls.add(b);
+  }
+  const auto cut = demvv::vertical_section(balls);
+  // |y| < R cuts (a ball that only touches the plane leaves no circle).
+  REQUIRE(cut.size() == 3);
+  CHECK(cut[0].radius == Approx(1e-3));
+  CHECK(cut[1].radius == Approx(0.8e-3)); // a 3-4-5 triangle
+  CHECK(cut[2].radius == Approx(0.6e-3));
+  for (const auto &c : cut)
+  {
+    CHECK(c.x == 2e-3);
+    CHECK(c.z == 5e-3);
+  }
+}
+
+TEST_CASE("circles are drawn about their points with their radii, scaled as x is", "[plot]")
+{
+  REQUIRE(demvv::gnuplot_available());
+  const fs::path dir = demvv_tests::test_folder("test_plot_circles");
+  fs::remove_all(dir);
+  demvv::Figure f = demvv::make_figure("discs", "Two discs", "x [mm]", "z [mm]", {});
+  f.curves.push_back(demvv::curve("balls", {1e-3, 3e-3}, {1e-3, 1e-3}, demvv::CurveStyle::circles));
+  f.curves.back().radius = {1e-3, 0.5e-3};
+  f.curves.back().x_scale = f.curves.back().y_scale = 1e3;
+  const auto drawn = demvv::draw_figures({f}, dir.string());
+  REQUIRE(drawn.at(0).drawn());
+  const std::string script = demvv::read_file((dir / "discs.gp").string());
+  CHECK(contains(script, "using ($1*1000):($2*1000):($3*1000) with circles"));
+  // The second disc's row: x, z and its radius, each read back bit for bit.
+  std::istringstream data(demvv::read_file((dir / "discs.csv").string()));
+  std::string row, last;
+  while (std::getline(data, row))
+    last = row.empty() ? last : row;
+  std::istringstream fields(last);
+  std::vector<double> values;
+  for (std::string field; std::getline(fields, field, ',');)
+    values.push_back(std::stod(field));
+  CHECK(values == std::vector<double>{3e-3, 1e-3, 0.5e-3});
 }
 
 TEST_CASE("a thinned curve keeps at most its share of points, the first and the last, in order", "[plot]")
@@ -144,8 +196,8 @@ TEST_CASE("a uniaxial run directory gets the Fig. 6.1 pair and its other figures
     CHECK(f.drawn());
     names.insert(f.name);
   }
-  for (const char *n :
-       {"stress_strain", "damage", "radial_strain", "bonds_broken_by_mode", "energy", "time_step", "quasi_static"})
+  for (const char *n : {"stress_strain", "damage", "radial_strain", "bonds_broken_by_mode", "energy", "time_step",
+                        "quasi_static", "section"})
   {
     CHECK(names.count(n) == 1);
     CHECK(fs::exists(dir / "plots" / (std::string(n) + ".svg")));

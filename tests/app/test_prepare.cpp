@@ -1,6 +1,7 @@
 // Sample preparation (thesis ch. 5): a small sample meets its own targets,
 // a saved sample continues exactly, the servo reaches its stress, and
 // impossible requests are refused.
+#include "app/decks/csv_input.h"
 #include "app/decks/deck.h"
 #include "app/io/output.h"
 #include "app/io/sample_file.h"
@@ -20,6 +21,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,6 +29,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -376,4 +379,29 @@ TEST_CASE("a preparation draws a ParaView frame at the end of each stage, the fi
   for (double r; values >> r; ++balls)
     CHECK(r == Approx(half).epsilon(1e-9));
   CHECK(balls == 200);
+
+  // The section of every stage, in stage order: at stage 0 every circle
+  // at most R/2 (the balls as placed), at the last at most the largest
+  // grown radius.
+  const nlohmann::json &stages = summary.at("preparation_stages");
+  REQUIRE(stages.size() == frames.size());
+  const demvv::CsvTable cut =
+    demvv::CsvTable::read((dir / "preparation_sections.csv").string(), demvv::CsvTable::Values::any_number);
+  std::set<double> seen;
+  double previous = 0, largest_last = 0;
+  for (std::size_t row = 0; row < cut.rows(); ++row)
+  {
+    const double stage = cut.get(row, "stage"), radius = cut.get(row, "section_radius_m");
+    CHECK(stage >= previous);
+    previous = stage;
+    seen.insert(stage);
+    CHECK(radius > 0);
+    if (stage == 0)
+      CHECK(radius <= half * (1 + 1e-12));
+    if (stage == double(stages.size() - 1))
+      largest_last = std::max(largest_last, radius);
+  }
+  CHECK(seen.size() == stages.size());
+  CHECK(largest_last > half);
+  CHECK(largest_last <= 1.02 * deck.real("sample/ball radius")); // a few 0.1 % expansions
 }

@@ -85,15 +85,19 @@ def numbers(row, path, line):
 def check_csv(path):
     """A series or table: comment lines, a header of distinct names, rows of
     as many numbers.  A gnuplot data file (plots/*.csv, mesh.csv)
-    has its columns named in its comment and blank lines between blocks."""
+    has its columns named in its comment and blank lines between blocks,
+    each block of one width."""
     gnuplot = os.path.basename(os.path.dirname(path)) == "plots" or os.path.basename(path) == "mesh.csv"
     with open(path, encoding="utf-8", newline="") as f:
         lines = f.read().split("\n")
     if lines and lines[-1] == "":
         lines.pop()
-    header, rows = None, []
+    header, rows, block_width = None, [], None
     for k, text in enumerate(lines, 1):
-        if text.startswith("#") or (gnuplot and text == ""):
+        if gnuplot and text == "":
+            block_width = None  # each block its own width (circles have a radius, points not)
+            continue
+        if text.startswith("#"):
             continue
         row = next(csv.reader([text]))
         if header is None and not gnuplot:
@@ -106,7 +110,8 @@ def check_csv(path):
             except ValueError:
                 pass
             continue
-        width = len(header) if header else (len(rows[0]) if rows else len(row))
+        width = len(header) if header else (block_width or len(row))
+        block_width = width
         if len(row) != width:
             fail(f"{path}:{k}: {len(row)} values for {width} columns")
         rows.append(numbers(row, path, k))
