@@ -23,19 +23,6 @@ namespace Patterns = dealii::Patterns;
 
 namespace
 {
-/// The position of the first control character (below 0x20, or DEL) in
-/// `text`, npos when it has none.
-std::size_t control_character(const std::string &text)
-{
-  for (std::size_t k = 0; k < text.size(); ++k)
-    if (static_cast<unsigned char>(text[k]) < 0x20 || text[k] == 0x7f)
-      return k;
-  return std::string::npos;
-}
-} // namespace
-
-namespace
-{
 std::vector<std::string> split(const std::string &s, char sep)
 {
   std::vector<std::string> out;
@@ -323,7 +310,8 @@ struct Deck::Impl final : DeckSchema
   {
     for (const std::string &part : split(key, '/'))
       if (const std::size_t bad = control_character(part); bad != std::string::npos)
-        reject(o, "key or section '" + escaped(key) + "' holds a control character (" + escaped(part.substr(bad, 1)) +
+        reject(o, "key or section '" + escaped(key) + "' holds a control character (" +
+                    escaped(part.substr(bad, static_cast<unsigned char>(part[bad]) == 0xC2 ? 2 : 1)) +
                     "): expected printable text (control characters would rewrite the run's own records)");
     check_instance_names(key, o);
     if (entries.find(key) == entries.end())
@@ -340,7 +328,7 @@ struct Deck::Impl final : DeckSchema
                   "which holds only UTF-8)");
     if (const std::size_t bad = control_character(value); bad != std::string::npos)
       reject(o, "key '" + key + "' has value '" + escaped(value) + "' with a control character (" +
-                  escaped(value.substr(bad, 1)) +
+                  escaped(value.substr(bad, static_cast<unsigned char>(value[bad]) == 0xC2 ? 2 : 1)) +
                   "): expected one line of printable text (a newline or escape would be written into deck.prm, "
                   "CSV headers and scripts)");
     if (value.find('#') != std::string::npos)

@@ -215,6 +215,20 @@ bool valid_utf8(const std::string &text)
   return true;
 }
 
+std::size_t control_character(const std::string &text)
+{
+  for (std::size_t k = 0; k < text.size(); ++k)
+  {
+    const auto c = static_cast<unsigned char>(text[k]);
+    if (c < 0x20 || c == 0x7f)
+      return k;
+    if (c == 0xC2 && k + 1 < text.size() && static_cast<unsigned char>(text[k + 1]) >= 0x80 &&
+        static_cast<unsigned char>(text[k + 1]) <= 0x9F)
+      return k;
+  }
+  return std::string::npos;
+}
+
 std::string escaped(const std::string &text)
 {
   std::string out;

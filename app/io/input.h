@@ -62,6 +62,11 @@ void check_memory(double bytes, const std::string &what, const std::string &path
 /// True when `text` is valid UTF-8 (what JSON outputs can hold).
 bool valid_utf8(const std::string &text);
 
+/// The position of the first control character in `text`, npos when it has
+/// none: C0 (below 0x20), DEL, and C1 (U+0080-U+009F, which a terminal
+/// reads as escapes, e.g. U+009B as CSI).
+std::size_t control_character(const std::string &text);
+
 /// `text` with every byte that is not printable ASCII written as \xNN, for
 /// error messages that quote input.
 std::string escaped(const std::string &text);

@@ -132,7 +132,7 @@ private:
   std::vector<std::string> overrides(const std::vector<std::string> &values) const;
 };
 
-Calibration::Calibration(const CalibrationOptions &o) : o_(o), mpi_(continuum::parallel_info())
+Calibration::Calibration(const CalibrationOptions &o) : o_(o), mpi_(study_ranks())
 {
   const Deck base = Deck::from_file(deck_kinds(), o.base_deck);
   if (base.kind() != "uniaxial")

@@ -2,6 +2,7 @@
 
 #include "app/decks/csv_input.h"
 #include "app/decks/deck.h"
+#include "app/io/input.h"
 #include "app/io/output.h"
 #include "app/kinds/deck_kinds.h"
 #include "app/kinds/prepare.h"
@@ -14,7 +15,6 @@
 #include "continuum/cylinder.h"
 
 #include <gsl/gsl_cdf.h>
-#include <mpi.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -94,7 +94,11 @@ Varied parse_vary(const std::string &arg, const Deck &base)
   {
     const std::string t = trimmed(value);
     if (t.empty())
-      throw DeckError("--vary '" + arg + "': an empty value: expected comma-separated values, none empty");
+      throw DeckError("--vary '" + escaped(arg) + "': an empty value: expected comma-separated values, none empty");
+    if (control_character(t) != std::string::npos)
+      throw DeckError("--vary '" + escaped(arg) + "': the value '" + escaped(t) +
+                      "' holds a control character: expected printable text (it is written into sweep.csv and the "
+                      "members' decks)");
     // A value given twice (as text, or as the same number: 0.1 and 1e-1)
     // would run the same member twice.
     const auto same = [&t](const std::string &other)
@@ -205,7 +209,7 @@ void prepare_samples(std::vector<Member> &members, int rank, int ranks, bool pro
       {
         std::cerr << "demvv: " << e.what() << "\n";
       }
-  MPI_Barrier(MPI_COMM_WORLD);
+  wait_for_all_ranks();
 }
 
 /// Completes each member's overrides with its prepared sample and resolves
@@ -366,6 +370,14 @@ bool finished(const std::string &dir, const Member &m)
   return status == "completed" || status == "refused";
 }
 
+/// A varied value as a number; NaN when it is not one.
+double as_number(const std::string &text)
+{
+  char *end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' && std::isfinite(v) ? v : nan;
+}
+
 std::string quoted(std::string text)
 {
   std::replace(text.begin(), text.end(), '\n', ' ');
@@ -373,6 +385,17 @@ std::string quoted(std::string text)
   for (const char c : text)
     out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
+}
+
+/// A varied value as a CSV cell: a number as it is; any other text quoted,
+/// and text a spreadsheet would take for a formula (starting with =, +, -
+/// or @) behind a "'" that keeps it text.
+std::string value_cell(const std::string &value)
+{
+  if (std::isfinite(as_number(value)))
+    return value;
+  const bool formula = !value.empty() && std::string("=+-@").find(value.front()) != std::string::npos;
+  return quoted((formula ? "'" : "") + value);
 }
 
 /// Writes sweep.csv and stats.csv from the members' directories; returns
@@ -401,7 +424,7 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     const SweepRow &r = rows[i];
     t << m.index << ",";
     for (const std::string &v : m.values)
-      t << v << ",";
+      t << value_cell(v) << ",";
     t << (m.seed > 0 ? std::to_string(m.seed) : "") << "," << r.status << "," << csv_cell(r.peak) << ","
       << csv_cell(r.strain) << "," << csv_cell(r.modulus) << "," << csv_cell(r.poisson) << "," << csv_cell(r.broken)
       << "," << csv_cell(r.particles) << "," << csv_cell(r.seconds) << ","
@@ -446,7 +469,7 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
       }
     s << group << ",";
     for (const std::string &v : members[first].values)
-      s << v << ",";
+      s << value_cell(v) << ",";
     s << n;
     const EnsembleStatistics stats[3] = {ensemble_statistics(peak), ensemble_statistics(strain),
                                          ensemble_statistics(modulus)};
@@ -460,14 +483,6 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
   }
   write_atomically(out + "/stats.csv", s.str());
   return rows;
-}
-
-/// A varied value as a number; NaN when it is not one.
-double as_number(const std::string &text)
-{
-  char *end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  return end != text.c_str() && *end == '\0' && std::isfinite(v) ? v : nan;
 }
 
 /// What a sweep's figures are drawn against (the header says how it is
@@ -632,6 +647,21 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
   if (before != labels)
     throw DeckError(named + " holds another sweep (other members): expected the same --vary and --seeds to resume "
                             "it, or --replace to start it over");
+  // A link planted in a shared sweep directory would send the members'
+  // runs, and the removal of a member's folder before it runs again,
+  // elsewhere.
+  const fs::path folder = fs::path(dir) / "members";
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(folder, ec);
+  if (ec || !fs::exists(st))
+    return;
+  if (!fs::is_directory(st))
+    throw DeckError(folder.string() + ": a link or a special file, not the sweep's members folder: expected a folder "
+                                      "(or --replace to start the sweep over)");
+  for (const fs::directory_entry &entry : fs::directory_iterator(folder, ec))
+    if (!fs::is_directory(entry.symlink_status(ec)))
+      throw DeckError(entry.path().string() + ": a link or a special file, not a member's run directory: expected "
+                                              "the folders the sweep made (or --replace to start the sweep over)");
 }
 
 /// Each member's threads (RunOptions::threads and most_threads), applied:
@@ -697,7 +727,7 @@ bool deck_declares(const Deck &deck, const std::string &key)
 
 SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
 {
-  const continuum::ParallelInfo mpi = continuum::parallel_info();
+  const continuum::ParallelInfo mpi = study_ranks();
   const Deck base = Deck::from_file(deck_kinds(), plan.base_deck);
   const DeckKind *kind = &base.kind_row();
   if (kind->on_every_mpi_rank && mpi.ranks > 1)
@@ -787,7 +817,7 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
                 << members.size() - n_kept << " to run on " << mpi.ranks << " rank" << (mpi.ranks > 1 ? "s" : "")
                 << " x " << threads << " thread" << (threads > 1 ? "s" : "") << "\n";
   }
-  MPI_Barrier(MPI_COMM_WORLD);
+  wait_for_all_ranks();
   Progress progress("sweep", o.progress && mpi.rank == 0, double(n_kept) / double(members.size()));
   int interrupted = 0;
   for (std::size_t i = mpi.rank; i < members.size() && !interrupted; i += mpi.ranks)
@@ -840,7 +870,7 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
                       std::to_string(done) + " of " + std::to_string(members.size()) + " members");
     }
   }
-  MPI_Allreduce(MPI_IN_PLACE, &interrupted, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  interrupted = largest_over_ranks(interrupted);
   SweepOutcome outcome;
   outcome.exit_code = interrupted ? 128 + interrupted : 0;
   if (mpi.rank != 0)

@@ -134,6 +134,32 @@ one_line "$work/err" "empty tied key"
 sweep --out "$work/a" --replace --quiet 2>"$work/err" || fail "--replace of a sweep directory failed: $(cat "$work/err")"
 [ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] || fail "--replace changed the table"
 
+# A shared sweep directory may hold planted links: a members folder (or a
+# member) that is a link is refused before anything is written through it.
+mkdir -p "$work/elsewhere"
+"$demvv" sweep "$work/base.prm" --vary balls/friction=0.1 --out "$work/linked" --quiet --threads 1 2>/dev/null ||
+  fail "the sweep to plant a link in failed"
+rm -rf "$work/linked/members" && ln -s ../elsewhere "$work/linked/members"
+"$demvv" sweep "$work/base.prm" --vary balls/friction=0.1 --out "$work/linked" --quiet --threads 1 2>"$work/err"
+[ $? -eq 2 ] && [ -z "$(ls "$work/elsewhere")" ] && grep -q "a link or a special file" "$work/err" ||
+  fail "a members folder that is a link was followed: $(cat "$work/err"); elsewhere: $(ls "$work/elsewhere")"
+one_line "$work/err" "members link"
+# Values are text in sweep.csv, never a formula or a broken row; a control
+# character is refused before anything runs.
+"$demvv" sweep "$work/base.prm" --vary "sample/source=lattice,=HYPERLINK(\"x\")" --out "$work/formula" --quiet \
+  --threads 1 2>/dev/null
+grep -q "^1,\"'=HYPERLINK(\"\"x\"\")\"," "$work/formula/sweep.csv" || fail "a formula-like value: $(cat "$work/formula/sweep.csv")"
+"$demvv" sweep "$work/base.prm" --vary "sample/source=lattice,$(printf 'a\nb')" --out "$work/newline" 2>"$work/err"
+[ $? -eq 2 ] && [ ! -e "$work/newline" ] && grep -q "control character" "$work/err" ||
+  fail "a value with a newline: $(cat "$work/err")"
+one_line "$work/err" "control character"
+# Alone (no mpirun) a sweep starts no MPI, so a small file-size limit ends
+# it as it ends a run: exit 4, one line (Open MPI's start-up aborted).
+(ulimit -f 20; "$demvv" sweep "$work/base.prm" --vary balls/friction=0.1,0.2 --out "$work/fsize" --quiet --threads 1) \
+  2>"$work/err"
+[ $? -eq 4 ] || fail "a sweep under a file-size limit: $(cat "$work/err")"
+one_line "$work/err" "file-size limit"
+
 # Entries tied by '+' take one value each point: one factor of the
 # product, a column each, every member's deck setting both.
 "$demvv" sweep "$work/base.prm" --vary "bonds/normal strength+bonds/shear strength=20,40" --vary balls/friction=0.2,0.4 \
