@@ -5,6 +5,7 @@
 #include "app/io/paraview.h"
 
 #include <fcntl.h>
+#include <fnmatch.h>
 #include <omp.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -18,6 +19,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace demvv
@@ -55,36 +57,73 @@ int RunStatus::exit_code() const
   return interrupted_by ? 128 + interrupted_by : 0;
 }
 
+namespace
+{
+/// What a run of each kind writes beside the entries every run may have
+/// (deck.prm, summary.json, plots, paraview, checkpoint): `--replace` of a
+/// run directory whose summary names its kind removes these alone, so a
+/// user's file that shares a name with another kind's output stays.
+const std::map<std::string, std::vector<std::string>> &run_outputs_by_kind()
+{
+  static const std::map<std::string, std::vector<std::string>> kinds = {
+    {"scene", {"series.csv", "bond_breaks.csv", "particles.csv", "contacts.csv"}},
+    {"uniaxial", {"series.csv", "bond_breaks.csv", "gauge_study.csv", "section.csv"}},
+    {"prepare", {"sample.json", "preparation_sections.csv"}},
+    {"burgers_ode", {"series.csv"}},
+    {"cylinder", {"series.csv", "mesh.csv", "level_[0-9]*"}},
+    {"mms", {"convergence.csv", "convergence.txt"}},
+    {"compare", {"compare.csv", "calibration", "dem", "dem_half_time_step"}},
+  };
+  return kinds;
+}
+
+/// demvv's temporary files: write_atomically's "NAME.XXXXXX.tmp".
+constexpr const char *temporary_files = "*.??????.tmp";
+
+/// The kind a run directory's summary.json names; "" when it names none
+/// (a run stopped before its summary, a summary not demvv's).
+std::string summary_kind(const std::string &dir)
+{
+  const std::string path = dir + "/summary.json";
+  struct stat st
+  {
+  };
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    return "";
+  try
+  {
+    const nlohmann::json doc = parse_json_input(read_input(path, "summary", 64 << 20), path, "summary");
+    const std::string kind = doc.is_object() ? doc.value("kind", "") : "";
+    return run_outputs_by_kind().count(kind) ? kind : "";
+  }
+  catch (const std::exception &)
+  {
+    return "";
+  }
+}
+
+/// The entries of a run of `kind` ("": of any kind).
+std::vector<std::string> run_entries(const std::string &kind)
+{
+  std::vector<std::string> names = {ownership_marker, "deck.prm",   "summary.json", "plots",
+                                    "paraview",       "checkpoint", temporary_files};
+  for (const auto &[name, files] : run_outputs_by_kind())
+    if (kind.empty() || name == kind)
+      for (const std::string &f : files)
+        if (std::find(names.begin(), names.end(), f) == names.end())
+          names.push_back(f);
+  return names;
+}
+} // namespace
+
 const std::vector<std::string> &output_entries(const std::string &what)
 {
-  static const std::vector<std::string> run = {ownership_marker,
-                                               "deck.prm",
-                                               "summary.json",
-                                               "series.csv",
-                                               "particles.csv",
-                                               "contacts.csv",
-                                               "bond_breaks.csv",
-                                               "compare.csv",
-                                               "convergence.csv",
-                                               "convergence.txt",
-                                               "gauge_study.csv",
-                                               "section.csv",
-                                               "preparation_sections.csv",
-                                               "mesh.csv",
-                                               "sample.json",
-                                               "checkpoint",
-                                               "plots",
-                                               "paraview",
-                                               "level_*",
-                                               "calibration",
-                                               "dem",
-                                               "dem_half_time_step",
-                                               "*.tmp"};
+  static const std::vector<std::string> run = run_entries("");
   static const std::vector<std::string> sweep = {
-    ownership_marker,      "sweep.json",           "sweep.csv", "stats.csv", "members", "plots",
-    "time_step_study.csv", "time_step_study.json", "*.tmp"};
+    ownership_marker,      "sweep.json",           "sweep.csv",    "stats.csv", "members", "plots",
+    "time_step_study.csv", "time_step_study.json", temporary_files};
   static const std::vector<std::string> calibration = {
-    ownership_marker, "calibration.json", "evaluations.csv", "fitted.prm", "evaluations", "plots", "*.tmp"};
+    ownership_marker, "calibration.json", "evaluations.csv", "fitted.prm", "evaluations", "plots", temporary_files};
   if (what == "run")
     return run;
   if (what == "sweep")
@@ -97,15 +136,8 @@ const std::vector<std::string> &output_entries(const std::string &what)
 bool matches_entry(const std::string &name, const std::vector<std::string> &patterns)
 {
   for (const std::string &p : patterns)
-  {
-    if (p == name)
+    if (::fnmatch(p.c_str(), name.c_str(), 0) == 0)
       return true;
-    const std::size_t n = p.size() - 1;
-    if (p.size() > 1 && p.back() == '*' && name.size() > n && name.compare(0, n, p, 0, n) == 0)
-      return true;
-    if (p.size() > 1 && p.front() == '*' && name.size() > n && name.compare(name.size() - n, n, p, 1, n) == 0)
-      return true;
-  }
   return false;
 }
 
@@ -230,7 +262,9 @@ bool holds_entries(const std::string &dir, const std::string &named, const std::
 void remove_outputs(const std::string &dir, const std::string &what, const std::vector<std::string> &keep)
 {
   namespace fs = std::filesystem;
-  const std::vector<std::string> &names = output_entries(what);
+  // A run removes what its kind writes, when its summary says which.
+  const std::string kind = what == "run" ? summary_kind(dir) : "";
+  const std::vector<std::string> names = kind.empty() ? output_entries(what) : run_entries(kind);
   std::vector<fs::path> old;
   std::error_code ec;
   for (const fs::directory_entry &entry : fs::directory_iterator(dir))

@@ -159,8 +159,8 @@ constexpr const char *ownership_marker = ".demvv";
 constexpr const char *lock_file = ".demvv.lock";
 
 /// The entries a directory holding `what` ("run", "sweep", "calibration")
-/// may have demvv write: exact names, or a prefix followed by '*', or '*'
-/// followed by a suffix.
+/// may have demvv write (for a run, of any kind): names or shell patterns
+/// (fnmatch: "*.??????.tmp", "level_[0-9]*").
 const std::vector<std::string> &output_entries(const std::string &what);
 /// Whether `name` is one of `patterns`.
 bool matches_entry(const std::string &name, const std::vector<std::string> &patterns);
@@ -209,8 +209,9 @@ void claim_run_directory(const std::string &dir, bool replace, const std::functi
 /// says what it is for.
 bool holds_entries(const std::string &dir, const std::string &named, const std::string &holding);
 /// Removes the entries of `dir` that a directory holding `what` writes
-/// (output_entries), but none of `keep` (absolute paths); OutputError
-/// naming the entry that would not go.
+/// (output_entries; for a run whose summary names its kind, what that kind
+/// writes), but none of `keep` (absolute paths); OutputError naming the
+/// entry that would not go.
 void remove_outputs(const std::string &dir, const std::string &what, const std::vector<std::string> &keep = {});
 /// Takes the output directory of a command that resumes (a sweep, a
 /// calibration: `what`), recognised by demvv's marker for `what` and the

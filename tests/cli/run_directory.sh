@@ -69,9 +69,16 @@ run "$impact" --out "$work/r" --replace --set particles/file=missing.csv 2>"$wor
 run "$impact" --out "$work/pv" --set output/paraview=true 2>/dev/null || fail "the ParaView run failed"
 [ -d "$work/pv/paraview" ] || fail "the ParaView run wrote no paraview/"
 echo keep > "$work/pv/stray.txt"
+# The user's files named like another kind's outputs or like demvv's
+# temporary files stay too: a scene's --replace removes what a scene writes.
+echo keep > "$work/pv/my_results.tmp" && echo keep > "$work/pv/sample.json"
+mkdir "$work/pv/level_notes" "$work/pv/calibration" "$work/pv/dem"
+demvv_tmp="$work/pv/summary.json.Ab12Cd.tmp" && echo stale > "$demvv_tmp"
 run "$impact" --out "$work/pv" --replace 2>/dev/null || fail "the run with --replace failed"
-[ ! -e "$work/pv/paraview" ] || fail "--replace left old files: $(ls "$work/pv")"
-[ -f "$work/pv/stray.txt" ] || fail "--replace removed a file no run writes"
+[ ! -e "$work/pv/paraview" ] && [ ! -e "$demvv_tmp" ] || fail "--replace left old files: $(ls "$work/pv")"
+for f in stray.txt my_results.tmp sample.json level_notes calibration dem; do
+  [ -e "$work/pv/$f" ] || fail "--replace removed $f, which no scene writes"
+done
 same_results "$work/pv/summary.json" "$work/r/summary.json" || fail "the replacing run's results differ"
 
 # A paused run resumes in its own directory, to the uninterrupted results.
