@@ -174,8 +174,12 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
   state.contact_law = std::string(sim.model().name());
   state.title = "checkpoint of " + protocol.label();
   // Its hash ties the sample file to the state below: an edited sample
-  // (a position changed by hand) is refused on resume, not continued.
-  const std::string sample_hash = fnv1a_hex(write_sample(checkpoint_sample_file(dir), state));
+  // (a position changed by hand) is refused on resume, not continued.  It
+  // is named by its step, so the state file written last names a sample
+  // file that is whole: a run killed between the two keeps the checkpoint
+  // before, whole (the older sample goes once the new state names its own).
+  const std::string sample_file = checkpoint_sample_file(dir, sim.steps());
+  const std::string sample_hash = fnv1a_hex(write_sample(sample_file, state));
 
   nlohmann::json series = nlohmann::json::array();
   for (const SeriesFile &f : protocol.series_files())
@@ -200,11 +204,19 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
     {"protocol", exact_values(protocol.checkpoint_values())},
     {"files", files.checkpoint_state()},
     {"inputs", files.directory() ? files.directory()->input_hashes() : nlohmann::json::object()},
+    {"sample_file", std::filesystem::path(sample_file).filename().string()},
     {"sample_fnv1a64", sample_hash},
     {"series", std::move(series)}};
   // The driver's state is written last: a checkpoint whose state file names
   // another step than its sample file is refused on resume.
   write_atomically(checkpoint_state_file(dir), json_text(doc) + "\n");
+  std::error_code ec;
+  for (const auto &entry : std::filesystem::directory_iterator(dir + "/checkpoint", ec))
+  {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("state_", 0) == 0 && entry.path().string() != sample_file)
+      std::filesystem::remove(entry.path(), ec);
+  }
 }
 
 nlohmann::json read_checkpoint(const std::string &dir)
@@ -225,7 +237,9 @@ void resume_from_checkpoint_state(dem::Simulation &sim, DemProtocol &protocol, R
                                   const std::string &dir)
 {
   const nlohmann::json doc = read_checkpoint(dir);
-  const std::string sample_path = checkpoint_sample_file(dir);
+  if (!doc.contains("steps") || !doc.at("steps").is_number_integer())
+    throw DeckError(checkpoint_state_file(dir) + ": no step count: expected the state file a checkpoint wrote");
+  const std::string sample_path = checkpoint_sample_file(dir, doc.at("steps").get<long>());
   const std::string sample_text = read_input(sample_path, "checkpoint sample file", max_table_bytes);
   const std::string sample_hash = fnv1a_hex(sample_text);
   if (sample_hash != doc.at("sample_fnv1a64").get<std::string>())
@@ -365,7 +379,10 @@ void ContactResolution::restore(const nlohmann::json &state)
 }
 
 std::string checkpoint_state_file(const std::string &run_dir) { return run_dir + "/checkpoint/driver.json"; }
-std::string checkpoint_sample_file(const std::string &run_dir) { return run_dir + "/checkpoint/state.json"; }
+std::string checkpoint_sample_file(const std::string &run_dir, long step)
+{
+  return run_dir + "/checkpoint/state_" + std::to_string(step) + ".json";
+}
 
 void check_resumable(const std::string &run_dir, const Deck &deck)
 {

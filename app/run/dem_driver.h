@@ -180,9 +180,10 @@ struct DemOutcome
 DemOutcome run_dem(dem::Simulation &sim, DemProtocol &protocol, RunFiles &files, const DemOutputSpec &output,
                    const RunOptions &options);
 
-/// The file names inside a run directory's checkpoint/.
+/// The file names inside a run directory's checkpoint/: the driver's state
+/// (written last) and the sample file of the step it names.
 std::string checkpoint_state_file(const std::string &run_dir);
-std::string checkpoint_sample_file(const std::string &run_dir);
+std::string checkpoint_sample_file(const std::string &run_dir, long step);
 
 /// Refuses (DeckError) a resume whose run directory has no checkpoint, or
 /// whose checkpoint was written by another deck than `deck` or by another

@@ -184,9 +184,17 @@ sed -i '$ s/^\(.\)/9\1/' "$work/own/balls.csv"
 run "$work/own/deck.prm" --resume "$work/changed" 2>"$work/err"
 [ $? -eq 2 ] && grep -q "balls.csv changed since the run began" "$work/err" || fail "a resume on a changed input: $(cat "$work/err")"
 grep -q '"paused"' "$work/changed/summary.json" || fail "a refused resume lost the paused state"
+# A checkpoint is its state file and the sample file of the step it names:
+# a run killed after writing a newer sample file (here one cut short),
+# before the state that names it, resumes from the checkpoint before.
+run "$work/own/deck.prm" --out "$work/killed" --pause-after 500 2>/dev/null || fail "the paused run to kill failed"
+[ "$(ls "$work/killed/checkpoint" | grep -c '^state_')" -eq 1 ] || fail "not one sample file: $(ls "$work/killed/checkpoint")"
+head -c 200 "$work/killed/checkpoint/"state_*.json > "$work/killed/checkpoint/state_99999999.json"
+run "$work/own/deck.prm" --resume "$work/killed" 2>"$work/err" || fail "a resume beside a newer sample cut short: $(cat "$work/err")"
+grep -q '"completed"' "$work/killed/summary.json" || fail "the resumed run did not complete"
 # A checkpoint whose sample was edited by hand (a ball moved) is refused.
 run "$work/own/deck.prm" --out "$work/moved" --pause-after 500 2>/dev/null || fail "the paused run to edit failed"
-python3 - "$work/moved/checkpoint/state.json" <<'EOF'
+python3 - "$work/moved/checkpoint/"state_*.json <<'EOF'
 import json, sys
 d = json.load(open(sys.argv[1]))
 d["balls"]["rows"][0][0] += 1e-6
