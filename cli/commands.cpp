@@ -222,6 +222,12 @@ int command_verify(bool full, const std::string &only, const std::string &out_di
   if (!cases_dir.empty() && !std::filesystem::is_directory(cases_dir))
     throw DeckError("--cases '" + cases_dir +
                     "': not a directory: expected the folder of the case decks (default: " + default_cases_dir() + ")");
+  // The report's folder, taken before any check runs: new, empty, or a
+  // report folder demvv made (its report replaced); a user's own folder is
+  // never written into.
+  make_directories(out_dir);
+  const DirectoryLock lock(out_dir, "report");
+  claim_resumable_directory(out_dir, true, "report", ownership_marker);
   const int used = apply_threads({"", threads, false});
   CheckContext ctx{cases_dir.empty() ? default_cases_dir() : cases_dir, !full, threads, {}};
   std::vector<CheckRecord> records;

@@ -124,8 +124,12 @@ const std::vector<std::string> &output_entries(const std::string &what)
     "time_step_study.csv", "time_step_study.json", temporary_files};
   static const std::vector<std::string> calibration = {
     ownership_marker, "calibration.json", "evaluations.csv", "fitted.prm", "evaluations", "plots", temporary_files};
+  static const std::vector<std::string> report = {ownership_marker, "report.json", "report.md",
+                                                  "report.html",    "figures",     temporary_files};
   if (what == "run")
     return run;
+  if (what == "report")
+    return report;
   if (what == "sweep")
     return sweep;
   if (what == "calibration")
@@ -291,8 +295,8 @@ bool claim_resumable_directory(const std::string &dir, bool replace, const std::
   }
   if (!marked_as(dir, what) || !std::filesystem::exists(std::filesystem::path(dir) / record))
     throw DeckError(named + " is not empty and is no " + what + " directory demvv made (it lacks demvv's marker " +
-                    ownership_marker + " or " + record + "): expected a new or empty directory (--out), or a " + what +
-                    "'s own to resume or replace");
+                    ownership_marker + (record == ownership_marker ? "" : " or " + record) +
+                    "): expected a new or empty directory (--out), or a " + what + "'s own to resume or replace");
   if (!replace)
     return true;
   remove_outputs(dir, what);

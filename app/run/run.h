@@ -158,7 +158,8 @@ private:
 constexpr const char *ownership_marker = ".demvv";
 constexpr const char *lock_file = ".demvv.lock";
 
-/// The entries a directory holding `what` ("run", "sweep", "calibration")
+/// The entries a directory holding `what` ("run", "sweep", "calibration",
+/// "report")
 /// may have demvv write (for a run, of any kind): names or shell patterns
 /// (fnmatch: "*.??????.tmp", "level_[0-9]*").
 const std::vector<std::string> &output_entries(const std::string &what);

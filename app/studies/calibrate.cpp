@@ -165,6 +165,8 @@ Calibration::Calibration(const CalibrationOptions &o) : o_(o), mpi_(study_ranks(
       take_key(trimmed(key), "--fit '" + arg + "'");
       p.keys.push_back(trimmed(key));
     }
+    if (p.keys.empty())
+      throw DeckError("--fit '" + arg + "': no entry: expected KEY[+KEY...]=START (deck entries and a start value)");
     p.start = number_in(arg.substr(eq + 1), "--fit '" + arg + "'", "a positive start value");
     if (!(p.start > 0))
       throw DeckError("--fit '" + arg + "': start " + format_number(p.start) +
@@ -199,6 +201,9 @@ Calibration::Calibration(const CalibrationOptions &o) : o_(o), mpi_(study_ranks(
     t.value = number_in(rest.substr(0, comma), "--target '" + arg + "'", "a target value");
     if (t.value == 0)
       throw DeckError("--target '" + arg + "': 0: expected a non-zero value (residuals are relative to it)");
+    if (t.value < 0 && t.quantity != "poisson_ratio")
+      throw DeckError("--target '" + arg + "': " + format_number(t.value) + ": expected a positive " + t.quantity +
+                      " (compression is positive in demvv)");
     if (comma != std::string::npos)
       t.uncertainty = number_in(rest.substr(comma + 1), "--target '" + arg + "'", "a standard uncertainty >= 0");
     if (t.uncertainty < 0)

@@ -20,6 +20,7 @@ namespace demvv
 namespace
 {
 const std::string safety_key = "motion/time step safety";
+const std::string fixed_step_key = "motion/fixed time step";
 
 /// A bulk quantity every uniaxial run writes, as a sweep reads it.
 struct Quantity
@@ -333,6 +334,13 @@ int command_time_step(const TimeStepStudyOptions &o)
                     "uniaxial runs write: expected a uniaxial deck");
   if (!deck_declares(base, safety_key))
     throw DeckError(o.base_deck + ": declares no " + safety_key + ": expected a deck with an automatic time step");
+  // A fixed step would make every level the same run: the study would
+  // report an error of zero it never measured.
+  if (Deck::from_file(deck_kinds(), o.base_deck, o.sets).real(fixed_step_key) > 0)
+    throw DeckError(o.base_deck + ": " + fixed_step_key +
+                    " is set (in the deck or by --set), so every safety would run the same step: expected the "
+                    "automatic step (" +
+                    fixed_step_key + " = 0)");
   SweepPlan plan{o.base_deck, {safety_key}, {}, o.seeds, 1};
   std::vector<std::string> set_values;
   refuse_repeated_overrides(o.sets);

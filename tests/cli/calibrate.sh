@@ -17,7 +17,7 @@
 # 3. the same command again resumes: nothing runs, the same calibration.json.
 # 4. bad input: an entry the deck lacks, an unknown quantity, too few seeds
 #    (exit 2, one line); an evaluation that faults (exit 3, one line, the
-#    evaluations kept, no fitted deck); an unreachable target (exit 3,
+#    evaluations kept, no fitted deck); an unreachable target (30 MPa at 0.4 % strain; exit 3,
 #    "not converged").
 # 5. under MPI two ranks give the same fit, byte for byte, as one process.
 # Usage: calibrate.sh DEMVV WORK_DIR [MPIRUN]
@@ -128,7 +128,7 @@ expect 3 "calibration failed: evaluation 000 (centre), seed 1: fault" fault -- "
 [ -f "$work/fault/evaluations/000/sweep.csv" ] && [ ! -e "$work/fault/fitted.prm" ] ||
   fail "a faulted fit lost its evaluation or wrote a fitted deck"
 expect 3 "not converged" unreachable -- "$demvv" calibrate "$lattice" --fit "$strength=10" \
-  --target peak_stress_pa=-1e7 --seeds 2 --max-iterations 2 --out "$work/unreachable" --threads 1 --quiet
+  --target peak_stress_pa=3e7 --seeds 2 --max-iterations 2 --out "$work/unreachable" --threads 1 --quiet
 [ "$(field "$work/unreachable/calibration.json" 'd["status"]')" = "not converged" ] ||
   fail "an unreachable target is not recorded as not converged"
 

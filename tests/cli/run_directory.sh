@@ -64,6 +64,17 @@ run "$impact" --out "$work/r" --replace --set particles/file=missing.csv 2>"$wor
 [ $? -eq 2 ] && grep -q "missing.csv" "$work/err" || fail "a bad deck with --replace: $(cat "$work/err")"
 [ -f "$work/r/stray.txt" ] && cmp -s "$work/r/summary.json" "$work/summary_before" || fail "a bad deck's --replace touched the old run"
 
+# verify writes its report only into a new or empty folder, or a report
+# folder it made (replaced there); a user's folder is refused untouched.
+mkdir -p "$work/user_report" && echo notes > "$work/user_report/report.md"
+"$demvv" verify --only V05 --out "$work/user_report" --threads 1 2>"$work/err"
+[ $? -eq 2 ] && [ "$(cat "$work/user_report/report.md")" = notes ] && grep -q "no report directory demvv made" "$work/err" ||
+  fail "verify into a user's folder: $(cat "$work/err")"
+one_line "$work/err" "verify into a user's folder"
+for k in 1 2; do
+  "$demvv" verify --only V05 --out "$work/own_report" --threads 1 2>"$work/err" || fail "verify $k into its own folder: $(cat "$work/err")"
+done
+
 # --replace replaces the run whole: old ParaView frames go, a file no run
 # writes (the user's) stays.
 run "$impact" --out "$work/pv" --set output/paraview=true 2>/dev/null || fail "the ParaView run failed"
