@@ -541,6 +541,9 @@ std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kin
     const nlohmann::json summary =
       parse_json_input(read_input(path, "run summary", max_summary_bytes), path, "run summary");
     std::vector<Figure> out;
+    if (!summary.is_object() || !summary.contains("kind") || !summary.at("kind").is_string())
+      throw DeckError(path + ": names no kind of run (a run still in progress, or a summary demvv did not write): "
+                             "expected the summary of a run that has ended");
     const DeckKind *kind = find_deck_kind(kinds, summary.at("kind").get<std::string>());
     if (!kind)
     {
@@ -571,7 +574,8 @@ std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kin
   }
   catch (const nlohmann::json::exception &e)
   {
-    throw DeckError(path + ": not a readable run summary: " + e.what());
+    throw DeckError(path + ": a field is missing or of another type than a run writes (" + one_line(e.what()) +
+                    "): expected the summary.json of a run demvv made, unedited");
   }
 }
 
