@@ -333,7 +333,7 @@ Figure section_picture(std::string name, std::string title, std::string caption)
 void section_figure(const std::string &dir, std::vector<Figure> &out)
 {
   const RunTable cut(dir, "section.csv");
-  if (!cut.has("section_radius_m"))
+  if (!cut.has("x_m") || !cut.has("z_m") || !cut.has("section_radius_m"))
     return;
   Figure f = section_picture("section", "Section at the end, with broken bonds",
                              "The balls the plane y = 0 cuts, as the circles they leave on it, and the bonds broken "
@@ -343,7 +343,8 @@ void section_figure(const std::string &dir, std::vector<Figure> &out)
   const double near = *std::max_element(r.begin(), r.end());
   const RunTable breaks(dir, "bond_breaks.csv");
   const char *modes[] = {"broken: tension", "broken: shear", "broken: displacement"};
-  for (int mode = 1; mode <= 3 && breaks.has("y_m"); ++mode)
+  const bool placed = breaks.has("mode") && breaks.has("x_m") && breaks.has("y_m") && breaks.has("z_m");
+  for (int mode = 1; mode <= 3 && placed; ++mode)
   {
     Curve c = curve(modes[mode - 1], {}, {}, CurveStyle::points);
     for (std::size_t k = 0; k < breaks.table->rows(); ++k)
@@ -368,7 +369,8 @@ void preparation_section_figures(const std::string &dir, const nlohmann::json &s
 {
   const RunTable cut(dir, "preparation_sections.csv");
   const nlohmann::json stages = summary.value("preparation_stages", nlohmann::json::array());
-  if (!cut.has("stage") || !stages.is_array() || stages.empty())
+  if (!cut.has("stage") || !cut.has("x_m") || !cut.has("z_m") || !cut.has("section_radius_m") || !stages.is_array() ||
+      stages.empty())
     return;
   const CsvTable &t = *cut.table;
   std::vector<std::size_t> shown = {0, 1, stages.size() - 1};
