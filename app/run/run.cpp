@@ -314,9 +314,10 @@ void claim_run_directory(const std::string &dir, bool replace, const std::functi
     throw DeckError(named + " is not empty: expected a new or empty directory (--out), or --replace to replace "
                             "the run there whole");
   if (!marked_as(dir, "run"))
-    throw DeckError(named + " is not empty and holds no demvv marker (" + std::string(ownership_marker) +
-                    "), so it is no run directory demvv made: --replace replaces only those: expected a run "
-                    "directory or a new or empty one (--out)");
+    throw DeckError(named + " is not empty and holds no demvv marker of a run (" + std::string(ownership_marker) +
+                    " is absent, unreadable, edited, or made for a sweep, calibration or report), so it is no run "
+                    "directory demvv made: --replace replaces only those: expected a run directory or a new or "
+                    "empty one (--out)");
   validate();
   remove_outputs(dir, "run", inputs);
 }
