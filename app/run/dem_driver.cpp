@@ -204,7 +204,6 @@ void write_checkpoint(const dem::Simulation &sim, DemProtocol &protocol, const R
     {"protocol", exact_values(protocol.checkpoint_values())},
     {"files", files.checkpoint_state()},
     {"inputs", files.directory() ? files.directory()->input_hashes() : nlohmann::json::object()},
-    {"sample_file", std::filesystem::path(sample_file).filename().string()},
     {"sample_fnv1a64", sample_hash},
     {"series", std::move(series)}};
   // The driver's state is written last: a checkpoint whose state file names
