@@ -80,26 +80,34 @@ const std::map<std::string, std::vector<std::string>> &run_outputs_by_kind()
 /// demvv's temporary files: write_atomically's "NAME.XXXXXX.tmp".
 constexpr const char *temporary_files = "*.??????.tmp";
 
-/// The kind a run directory's summary.json names; "" when it names none
-/// (a run stopped before its summary, a summary not demvv's).
-std::string summary_kind(const std::string &dir)
+/// A JSON object demvv wrote into a directory, read as any input is (a
+/// regular file within `limit`, never through a link); an empty object
+/// when it is absent, a link, unreadable or no object.
+nlohmann::json json_object_in(const std::string &path, const std::string &what, std::uintmax_t limit)
 {
-  const std::string path = dir + "/summary.json";
   struct stat st
   {
   };
   if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
-    return "";
+    return nlohmann::json::object();
   try
   {
-    const nlohmann::json doc = parse_json_input(read_input(path, "summary", 64 << 20), path, "summary");
-    const std::string kind = doc.is_object() ? doc.value("kind", "") : "";
-    return run_outputs_by_kind().count(kind) ? kind : "";
+    nlohmann::json doc = parse_json_input(read_input(path, what, limit), path, what);
+    return doc.is_object() ? doc : nlohmann::json::object();
   }
   catch (const std::exception &)
   {
-    return "";
+    return nlohmann::json::object();
   }
+}
+
+/// The kind a run directory's summary.json names; "" when it names none
+/// (a run stopped before its summary, a summary not demvv's).
+std::string summary_kind(const std::string &dir)
+{
+  const nlohmann::json kind =
+    json_object_in(dir + "/summary.json", "summary", max_summary_bytes).value("kind", nlohmann::json());
+  return kind.is_string() && run_outputs_by_kind().count(kind.get<std::string>()) ? kind.get<std::string>() : "";
 }
 
 /// The entries of a run of `kind` ("": of any kind).
@@ -159,21 +167,8 @@ void mark_directory(const std::string &dir, const std::string &what)
 
 bool marked_as(const std::string &dir, const std::string &what)
 {
-  const std::string path = dir + "/" + ownership_marker;
-  struct stat st
-  {
-  };
-  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
-    return false;
-  try
-  {
-    const nlohmann::json doc = parse_json_input(read_input(path, "demvv marker", 1 << 16), path, "demvv marker");
-    return doc.is_object() && doc.value("made_by", "") == "demvv" && doc.value("holds", "") == what;
-  }
-  catch (const std::exception &)
-  {
-    return false;
-  }
+  const nlohmann::json doc = json_object_in(dir + "/" + ownership_marker, "demvv marker", 1 << 16);
+  return doc.value("made_by", nlohmann::json()) == "demvv" && doc.value("holds", nlohmann::json()) == what;
 }
 
 DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
