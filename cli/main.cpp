@@ -19,6 +19,7 @@
 // 130 / 143 the run was interrupted by SIGINT / SIGTERM (outputs kept,
 // checkpoint written).
 #include "app/decks/deck.h"
+#include "app/io/input.h"
 #include "app/io/output.h"
 #include "app/kinds/deck_kinds.h"
 #include "app/studies/calibrate.h"
@@ -60,11 +61,33 @@ int finish(int code)
                 code == 0 ? 4 : code);
 }
 
-/// A directory option (--out) must name one: '' would fall back to a default.
-const CLI::Validator
-  directory_name([](std::string &value)
-                 { return value.empty() ? std::string("expected a directory name, found ''") : std::string(); },
-                 "DIR");
+/// A directory option (--out) must name one: '' would fall back to a
+/// default, and a control character (a newline) would be echoed into the
+/// run's messages and records.
+const CLI::Validator directory_name(
+  [](std::string &value)
+  {
+    if (value.empty())
+      return std::string("expected a directory name, found ''");
+    if (const std::size_t bad = demvv::control_character(value); bad != std::string::npos)
+      return "found '" + demvv::escaped(value) +
+             "' with a control character: expected a directory name of printable "
+             "text";
+    return std::string();
+  },
+  "DIR");
+
+/// A count option takes digits: CLI11 reads '1e3' as no integer and would
+/// call it out of range.
+const CLI::Validator whole_number(
+  [](std::string &value)
+  {
+    const std::size_t digits = value.find_first_not_of("0123456789", value.rfind('+', 0) == 0 ? 1 : 0);
+    if (value.empty() || digits != std::string::npos || value == "+")
+      return "found '" + demvv::escaped(value) + "': expected a whole number written in digits (1000, not 1e3)";
+    return std::string();
+  },
+  "");
 } // namespace
 
 int main(int argc, char **argv)
@@ -107,6 +130,7 @@ int main(int argc, char **argv)
                  "OpenMP threads, at most: a DEM run starts on N and moves to fewer while fewer run faster (a busy "
                  "machine); results never depend on it (default: OMP_NUM_THREADS, kept exactly, else the cores no "
                  "other process is busy on, then up to every core)")
+    ->check(whole_number)
     ->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "No progress line (it is shown only when standard output is a terminal)");
   run
@@ -119,6 +143,7 @@ int main(int argc, char **argv)
     ->add_option("--pause-after", pause_after,
                  "Stop after this many steps as an interruption would (outputs flushed, checkpoint written, "
                  "exit 0), e.g. to fit a long run into batch-queue jobs; continue with --resume")
+    ->check(whole_number)
     ->check(CLI::Range(1L, 1000000000000L));
   run->footer(kinds_help);
 
@@ -134,6 +159,7 @@ int main(int argc, char **argv)
     ->add_option("--seeds", sweep.seeds,
                  "Run each combination with seeds 1..N (bond strengths and, for a sample from a prepare "
                  "deck, the packing); default: the deck's own seeds")
+    ->check(whole_number)
     ->check(CLI::Range(1, 100000));
   sweep_cmd->add_option("--out", sweep.settings.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")
     ->required()
@@ -144,10 +170,12 @@ int main(int argc, char **argv)
     ->add_option("--threads", sweep.settings.threads,
                  "OpenMP threads per member, at most, changed during a DEM member as the load does (default: "
                  "OMP_NUM_THREADS, kept exactly, else the idle cores, shared among MPI ranks)")
+    ->check(whole_number)
     ->check(CLI::Range(1, 1024));
   sweep_cmd
     ->add_option("--max-members", sweep.settings.max_members,
                  "The most members the sweep may have (default 10000); more are refused before planning")
+    ->check(whole_number)
     ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   bool sweep_quiet = false;
   sweep_cmd->add_flag("--quiet", sweep_quiet, "No progress line and no opening line");
@@ -163,7 +191,7 @@ int main(int argc, char **argv)
                  "Time-step safeties (fractions of the critical step bound), coarse to fine, at least "
                  "three in (0, 1] (default 0.8,0.4,0.2)")
     ->delimiter(',');
-  time_step_cmd->add_option("--seeds", time_step.seeds, "Seeds per level, at least 2 (default 5)");
+  time_step_cmd->add_option("--seeds", time_step.seeds, "Seeds per level, at least 2 (default 5)")->check(whole_number);
   time_step_cmd->add_option("--set", time_step.sets,
                             "Set a deck entry in every member: SECTION/KEY=VALUE (repeatable)");
   time_step_cmd
@@ -172,6 +200,7 @@ int main(int argc, char **argv)
     ->check(directory_name);
   time_step_cmd->add_flag("--replace", time_step.settings.replace, "Start the study in --out over");
   time_step_cmd->add_option("--threads", time_step.settings.threads, "OpenMP threads per member, at most")
+    ->check(whole_number)
     ->check(CLI::Range(1, 1024));
   bool time_step_quiet = false;
   time_step_cmd->add_flag("--quiet", time_step_quiet, "No progress line and no opening line");
@@ -198,10 +227,12 @@ int main(int argc, char **argv)
                             "KEY=VALUE: the calibration condition, set in every evaluation as --set would "
                             "(repeatable)");
   calibrate_cmd->add_option("--seeds", calibration.seeds, "Seeds per evaluation (default 3)")
+    ->check(whole_number)
     ->check(CLI::Range(2, 100000));
   calibrate_cmd
     ->add_option("--first-seed", calibration.first_seed,
                  "The seeds are K ... K + N - 1 (default 1; another K: another seed set)")
+    ->check(whole_number)
     ->check(CLI::Range(1, 1000000));
   calibrate_cmd->add_option("--step", calibration.step,
                             "Finite-difference step in ln(value) for the Jacobian (default 0.05; doubled where the "
@@ -221,6 +252,7 @@ int main(int argc, char **argv)
     ->add_option("--threads", calibration.settings.threads,
                  "OpenMP threads per run, at most, changed during a run as the load does (default: "
                  "OMP_NUM_THREADS, kept exactly, else the idle cores, shared among MPI ranks)")
+    ->check(whole_number)
     ->check(CLI::Range(1, 1024));
   bool calibrate_quiet = false;
   calibrate_cmd->add_flag("--quiet", calibrate_quiet, "No progress lines (the evaluations and their members)");
@@ -241,15 +273,20 @@ int main(int argc, char **argv)
     ->add_option("--threads", threads,
                  "OpenMP threads, at most, for each run of a check (default: OMP_NUM_THREADS, kept exactly, "
                  "else the cores no other process is busy on)")
+    ->check(whole_number)
     ->check(CLI::Range(1, 1024));
 
   demvv::BenchOptions bench;
   auto *bench_cmd = app.add_subcommand("bench", "Time the engine on a bonded sample and print one line");
   bench_cmd->add_option("--particles", bench.particles, "Number of balls, at least 100 (default 6000)")
+    ->check(whole_number)
     ->check(CLI::Range(100L, 100000000L));
-  bench_cmd->add_option("--steps", bench.steps, "Timed steps (default 2000)")->check(CLI::Range(1L, 1000000000L));
-  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  bench_cmd->add_option("--steps", bench.steps, "Timed steps (default 2000)")
+    ->check(whole_number)
+    ->check(CLI::Range(1L, 1000000000L));
+  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(whole_number)->check(CLI::Range(1, 1024));
   bench_cmd->add_option("--repeat", bench.repeat, "Timings to take; the fastest is reported (default 3)")
+    ->check(whole_number)
     ->check(CLI::Range(1, 100));
   bench_cmd->add_option("--lattice", bench.lattice, "Sample lattice: sc (coordination 6) or fcc (12)");
   bench_cmd->add_option("--law", bench.law, "Contact law keyword");
@@ -360,8 +397,8 @@ int main(int argc, char **argv)
   catch (const std::bad_alloc &)
   {
     // One literal, one write, nothing allocated.
-    std::cerr << "demvv: out of memory: the input needs more memory than this machine has: expected fewer balls "
-                 "or a smaller input\n";
+    std::cerr << "demvv: out of memory: the input needs more memory than this process may have (the machine's, or "
+                 "a limit such as ulimit -v): expected fewer balls or a smaller input\n";
     return 2;
   }
   catch (const std::length_error &e)

@@ -607,8 +607,11 @@ CellSize cell_size(const PackingSettings &s)
                                      std::to_string(std::numeric_limits<Index>::max()) + ")");
     c.particles = std::lround(count);
   }
+  // A cell sized from the ball count is too flat by its aspect ratio, or
+  // too narrow by the count.
+  const bool too_flat = s.particles > 0 && c.diameter > 2 * s.radius && !(c.height > 2 * s.radius);
   if (!(c.diameter > 2 * s.radius && c.height > 2 * s.radius) || c.particles < 1)
-    throw PackingError(s.particles > 0 ? "particles" : "diameter",
+    throw PackingError(too_flat ? "aspect ratio" : s.particles > 0 ? "particles" : "diameter",
                        "the cell (D = " + fmt(c.diameter) + " m, H = " + fmt(c.height) +
                          " m) is too small for one ball of radius " + fmt(s.radius) + " m");
   if (c.particles < min_packing_balls)

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -85,11 +86,16 @@ struct Deck::Impl final : DeckSchema
     std::unique_ptr<Patterns::PatternBase> pattern;
     std::string expected; // human description of the allowed values
     std::string value;
-    bool positive = false; // real with an exclusive lower bound
+    bool open_min = false; // a real whose interval leaves out its lower end
+    bool open_max = false; // ... its upper end
     double min = 0;
-    bool numeric = false; // real, vector or list of reals: every item must be a normal double
-    bool file = false;    // a file name, relative to the deck's folder unless absolute
-    std::string unit;     // of a number, vector or list ("-": dimensionless; "": not a number)
+    double max = 0;
+    bool assigned = false;     // set by the deck or an override (not the default)
+    mutable bool read = false; // asked for by a typed accessor (the kind's parse uses it)
+    bool list = false;         // a vector or list of numbers (comma-separated)
+    bool numeric = false;      // real, vector or list of reals: every item must be a normal double
+    bool file = false;         // a file name, relative to the deck's folder unless absolute
+    std::string unit;          // of a number, vector or list ("-": dimensionless; "": not a number)
   };
 
   /// A repeated section: where it may appear and how an instance is declared.
@@ -143,19 +149,23 @@ struct Deck::Impl final : DeckSchema
     stack.pop_back();
   }
   void real(const std::string &name, double value, double min, double max, const std::string &unit,
-            const std::string &help, bool min_exclusive) override
+            const std::string &help, Interval ends) override
   {
+    const bool open_min = ends == Interval::open_below || ends == Interval::open;
+    const bool open_max = ends == Interval::open_above || ends == Interval::open;
     const double lo = std::isinf(min) ? -std::numeric_limits<double>::max() : min;
     const double hi = std::isinf(max) ? std::numeric_limits<double>::max() : max;
-    std::string expected = "a number " + std::string(min_exclusive ? "> " : ">= ") + format_number(min);
+    std::string expected = "a number " + std::string(open_min ? "> " : ">= ") + format_number(min);
     if (!std::isinf(max))
-      expected += " and <= " + format_number(max);
+      expected += std::string(open_max ? " and < " : " and <= ") + format_number(max);
     if (!unit.empty() && unit != "-")
       expected += " (" + unit + ")";
     add(name, format_number(value), std::make_unique<Patterns::Double>(lo, hi), expected, help + " [" + unit + "]");
     Entry &e = entries[full(name)];
-    e.positive = min_exclusive;
+    e.open_min = open_min;
+    e.open_max = open_max;
     e.min = min;
+    e.max = max;
     e.numeric = true;
     e.unit = unit;
   }
@@ -193,6 +203,7 @@ struct Deck::Impl final : DeckSchema
   {
     add(name, value, std::make_unique<Patterns::List>(Patterns::Double(), 3, 3, ","),
         "three comma-separated numbers (" + unit + ")", help + " [" + unit + "]");
+    entries[full(name)].list = true;
     entries[full(name)].numeric = true;
     entries[full(name)].unit = unit;
   }
@@ -203,6 +214,7 @@ struct Deck::Impl final : DeckSchema
         "a comma-separated list of " + std::to_string(min_len) + " to " + std::to_string(max_len) + " numbers (" +
           unit + ")",
         help + " [" + unit + "]");
+    entries[full(name)].list = true;
     entries[full(name)].numeric = true;
     entries[full(name)].unit = unit;
   }
@@ -342,11 +354,14 @@ struct Deck::Impl final : DeckSchema
                       "' is not a normal double (0, or a magnitude between 2.2e-308 and 1.8e308): expected " +
                       e.expected);
     bool ok = e.pattern->match(value);
-    if (ok && e.positive)
+    if (ok && e.open_min)
       ok = std::stod(value) > e.min;
+    if (ok && e.open_max)
+      ok = std::stod(value) < e.max;
     if (!ok)
       reject(o, "key '" + key + "' has value '" + value + "': expected " + e.expected);
     e.value = value;
+    e.assigned = true;
     store(key, value);
   }
 
@@ -359,6 +374,14 @@ struct Deck::Impl final : DeckSchema
     prm.set(parts.back(), value);
     for (std::size_t k = 0; k + 1 < parts.size(); ++k)
       prm.leave_subsection();
+  }
+
+  /// The value of `key`, marked as read.
+  const std::string &value_of(const std::string &key) const
+  {
+    const Entry &e = at(key);
+    e.read = true;
+    return e.value;
   }
 
   const Entry &at(const std::string &key) const
@@ -392,7 +415,7 @@ const DeckKind &find_kind(const DeckKinds &kinds, const std::string &name, const
 {
   if (const DeckKind *k = find_deck_kind(kinds, name))
     return *k;
-  throw DeckError(where + ": key 'kind' has value '" + name + "': expected one of " + kind_names(kinds));
+  throw DeckError(where + ": key 'kind' has value '" + escaped(name) + "': expected one of " + kind_names(kinds));
 }
 
 std::unique_ptr<Deck::Impl> make_impl(const DeckKinds &kinds, const std::string &kind, const std::string &where)
@@ -446,7 +469,11 @@ DeckText read_prm(const std::string &path, std::istream &in)
   {
     ++line;
     const auto hash = raw.find('#');
-    const std::string s = trimmed(hash == std::string::npos ? raw : raw.substr(0, hash));
+    // A tab separates words as a space does (editors insert either).
+    std::string s = trimmed(hash == std::string::npos ? raw : raw.substr(0, hash));
+    for (const char *word : {"set", "subsection"})
+      if (s.size() > std::strlen(word) && s.compare(0, std::strlen(word), word) == 0 && s[std::strlen(word)] == '\t')
+        s[std::strlen(word)] = ' ';
     if (s.empty())
       continue;
     const std::string where = path + ":" + std::to_string(line);
@@ -469,7 +496,7 @@ DeckText read_prm(const std::string &path, std::istream &in)
     {
       const auto eq = s.find('=');
       if (eq == std::string::npos)
-        throw DeckError(where + ": cannot read '" + s + "': expected 'set KEY = VALUE'");
+        throw DeckError(where + ": cannot read '" + escaped(s) + "': expected 'set KEY = VALUE'");
       std::string key;
       for (const auto &sec : stack)
         key += sec + "/";
@@ -481,7 +508,8 @@ DeckText read_prm(const std::string &path, std::istream &in)
       out.assignments.push_back({key, trimmed(s.substr(eq + 1)), line});
     }
     else
-      throw DeckError(where + ": cannot read '" + s + "': expected 'set KEY = VALUE', 'subsection NAME' or 'end'");
+      throw DeckError(where + ": cannot read '" + escaped(s) +
+                      "': expected 'set KEY = VALUE', 'subsection NAME' or 'end'");
   }
   if (!stack.empty())
     throw DeckError(path + ": subsection '" + stack.back() + "' is never closed with 'end'");
@@ -624,20 +652,22 @@ std::string Deck::name() const
 
 void Deck::set(const std::string &key, const std::string &value) { impl_->assign(key, value, {"override " + key}); }
 
-std::string Deck::text(const std::string &key) const { return impl_->at(key).value; }
+std::string Deck::text(const std::string &key) const { return impl_->value_of(key); }
 std::string Deck::unit(const std::string &key) const { return impl_->at(key).unit; }
-double Deck::real(const std::string &key) const { return std::stod(impl_->at(key).value); }
-long Deck::integer(const std::string &key) const { return std::stol(impl_->at(key).value); }
+double Deck::real(const std::string &key) const { return std::stod(impl_->value_of(key)); }
+long Deck::integer(const std::string &key) const { return std::stol(impl_->value_of(key)); }
+bool Deck::was_read(const std::string &key) const { return impl_->at(key).read; }
+bool Deck::holds_list(const std::string &key) const { return impl_->at(key).list; }
 bool Deck::flag(const std::string &key) const
 {
-  const std::string &v = impl_->at(key).value;
+  const std::string &v = impl_->value_of(key);
   return v == "true" || v == "yes";
 }
 
 std::vector<double> Deck::real_list(const std::string &key) const
 {
   std::vector<double> out;
-  const std::string &v = impl_->at(key).value;
+  const std::string &v = impl_->value_of(key);
   if (trimmed(v).empty())
     return out;
   for (const auto &item : split(v, ','))
@@ -670,9 +700,10 @@ std::vector<std::string> Deck::instances(const std::string &section, const std::
   throw std::logic_error("demvv bug: no repeated section '" + keyword + "' in '" + section + "'");
 }
 
-std::string Deck::file(const std::string &key) const
+std::string Deck::file(const std::string &key) const { return beside_deck(text(key)); }
+
+std::string Deck::beside_deck(const std::string &f) const
 {
-  const std::string f = text(key);
   if (f.empty() || f.front() == '/')
     return f;
   return directory() + "/" + f;
@@ -693,6 +724,17 @@ std::string absolute_file(const std::string &file)
 }
 } // namespace
 
+std::string Deck::input_file(const std::string &key) const
+{
+  const std::string f = file(key);
+  std::error_code ec;
+  if (!std::filesystem::exists(f, ec))
+    fail(key, (impl_->at(key).assigned ? "" : "(the default: the deck does not set this key) ") +
+                std::string("no file '") + escaped(f) +
+                "': expected an existing file (relative names are read beside the deck)");
+  return f;
+}
+
 void Deck::fail(const std::string &key, const std::string &expected) const
 {
   fail_key(impl_->path, key, impl_->at(key).value, expected);
@@ -707,7 +749,7 @@ std::string Deck::resolved() const
     if (e.file && !e.value.empty() && e.value.front() != '/' && !impl_->path.empty())
     {
       relative.emplace_back(key, e.value);
-      impl_->store(key, absolute_file(file(key)));
+      impl_->store(key, absolute_file(beside_deck(e.value)));
     }
   std::ostringstream out;
   out << "# demvv resolved deck: every entry, defaults filled in (SI units).\n";
@@ -724,7 +766,7 @@ std::vector<std::string> Deck::input_files() const
   std::vector<std::string> files;
   for (const auto &[key, e] : impl_->entries)
     if (e.file && !e.value.empty())
-      files.push_back(absolute_file(file(key)));
+      files.push_back(absolute_file(beside_deck(e.value)));
   return files;
 }
 

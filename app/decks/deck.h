@@ -28,6 +28,15 @@
 
 namespace demvv
 {
+/// Which ends of a real entry's [min, max] are allowed.
+enum class Interval
+{
+  closed,     ///< [min, max]
+  open_below, ///< (min, max]
+  open_above, ///< [min, max)
+  open        ///< (min, max)
+};
+
 /// How a kind declares its entries (implemented over deal.II in deck.cpp).
 class DeckSchema
 {
@@ -35,9 +44,9 @@ public:
   virtual ~DeckSchema() = default;
   virtual void enter(const std::string &section) = 0;
   virtual void leave() = 0;
-  /// A real number in [min, max] (or (min, max] with min_exclusive).
+  /// A real number in [min, max], or with the ends the interval leaves out.
   virtual void real(const std::string &name, double value, double min, double max, const std::string &unit,
-                    const std::string &help, bool min_exclusive = false) = 0;
+                    const std::string &help, Interval ends = Interval::closed) = 0;
   virtual void integer(const std::string &name, long value, long min, long max, const std::string &help) = 0;
   virtual void choice(const std::string &name, const std::string &value, const std::vector<std::string> &options,
                       const std::string &help) = 0;
@@ -160,6 +169,8 @@ public:
   /// The unit a numeric entry is declared in ("m/s"; "-": dimensionless;
   /// "" for an entry that is not a number).
   std::string unit(const std::string &key) const;
+  /// Whether the entry is a vector or list of numbers (comma-separated).
+  bool holds_list(const std::string &key) const;
   double real(const std::string &key) const;
   long integer(const std::string &key) const;
   bool flag(const std::string &key) const;
@@ -167,12 +178,19 @@ public:
   std::vector<double> real_list(const std::string &key) const;
   /// A relative file name from the deck resolved against directory().
   std::string file(const std::string &key) const;
+  /// file(key), refused (fail) unless something exists at that name;
+  /// the message says when the name is the key's default.
+  std::string input_file(const std::string &key) const;
   /// Every file the deck's entries name (a sample, a particle CSV, ...),
   /// absolute (links and ".." resolved where the file exists).
   std::vector<std::string> input_files() const;
   /// The instances of a repeated section, e.g. instances("walls", "plane")
   /// gives {"plane 1", "plane top"}, in the order the deck first names them.
   std::vector<std::string> instances(const std::string &section, const std::string &keyword) const;
+
+  /// Whether a typed accessor (text, real, file, ...) has asked for `key`:
+  /// after the kind's parse, whether the run uses it.
+  bool was_read(const std::string &key) const;
 
   /// Throws a DeckError naming this deck, the key and its value.
   [[noreturn]] void fail(const std::string &key, const std::string &expected) const;
@@ -187,6 +205,8 @@ public:
 
 private:
   explicit Deck(std::unique_ptr<Impl> impl);
+  /// A file name as written, resolved against directory().
+  std::string beside_deck(const std::string &name) const;
   std::unique_ptr<Impl> impl_;
 };
 } // namespace demvv

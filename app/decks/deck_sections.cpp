@@ -45,7 +45,7 @@ void declare_contact_law(DeckSchema &s)
   s.choice("law", names.front(), names, help);
   for (const auto &[c, laws] : all_law_constants())
     s.real(std::string(c.key), c.default_value, 0, inf, std::string(c.unit),
-           std::string(c.help) + " Used by: " + laws + ".", true);
+           std::string(c.help) + " Used by: " + laws + ".", Interval::open_below);
   s.leave();
 }
 
@@ -53,7 +53,9 @@ LawSpec LawSpec::parse(const Deck &d)
 {
   LawSpec law;
   law.keyword = d.text("contact law/law");
-  for (const auto &[c, laws] : all_law_constants())
+  // Only the chosen law's constants: the others are not read (a sweep over
+  // one of them would vary nothing).
+  for (const dem::LawConstant &c : dem::find_law(law.keyword)->deck_constants)
     law.constants.values[std::string(c.key)] = d.real("contact law/" + std::string(c.key));
   return law;
 }
@@ -79,7 +81,8 @@ void declare_rate(DeckSchema &s)
 {
   s.enter("rate");
   s.real("temperature", 283, 0, inf, "K",
-         "Test temperature T of the temperature-compensated strain rate (thesis eq. 4.3; reference 283 K).", true);
+         "Test temperature T of the temperature-compensated strain rate (thesis eq. 4.3; reference 283 K).",
+         Interval::open_below);
   s.real("physical strain rate", 0, 0, inf, "1/s",
          "Strain rate of the test the run represents; 0: the run's own rate.  Both Burger's viscosities are "
          "multiplied by rate_T / run rate, rate_T the temperature-compensated physical rate (viscosity scaling, "
@@ -160,18 +163,19 @@ void declare_motion(DeckSchema &s, const std::string &default_gravity, double de
   s.enter("motion");
   s.vector3("gravity", default_gravity, "m/s^2", "Gravitational acceleration.");
   s.real("local damping", default_damping, 0, 1, "-",
-         "PFC local non-viscous damping coefficient alpha (0 = undamped; 0.7 is PFC's default). "
-         "Must be < 1.");
+         "PFC local non-viscous damping coefficient alpha (0 = undamped; 0.7 is PFC's default; 1 would cancel "
+         "every force).",
+         Interval::open_above);
   s.real("time step safety", 0.8, 0, 1, "-", "Fraction of the critical time step bound used by the automatic step; the bound is "
          "2 / sqrt((1 + local damping) x the largest stiffness-to-mass bound), local damping "
          "stiffening the fastest mode.",
-         true);
+         Interval::open_below);
   s.real("fixed time step", 0, 0, inf, "s", "Fixed time step; 0 selects the automatic step.");
   s.choice("unstable fixed step", "stop", {"stop", "run"},
            "What to do when a fixed step exceeds the critical step bound: stop with exit code 3, "
            "or run anyway (to demonstrate instability).");
   s.real("neighbour skin", 0.25, 0, inf, "-", "Verlet skin of the neighbour list as a fraction of the largest radius.",
-         true);
+         Interval::open_below);
   s.leave();
 }
 
@@ -180,8 +184,6 @@ dem::SimulationSettings parse_motion(const Deck &d)
   dem::SimulationSettings m;
   m.gravity = parse_vec3(d, "motion/gravity");
   m.local_damping = d.real("motion/local damping");
-  if (m.local_damping >= 1)
-    d.fail("motion/local damping", "expected a number < 1 (alpha = 1 would cancel every force)");
   m.time_step_safety = d.real("motion/time step safety");
   m.fixed_time_step = d.real("motion/fixed time step");
   m.allow_unstable_step = d.text("motion/unstable fixed step") == "run";
@@ -206,12 +208,12 @@ void declare_bonds(DeckSchema &s, const std::vector<std::string> &modes, bool te
            "CSV of bonded pairs for install = list: columns first,second (ball indices from 0) and "
            "optionally normal_strength_n, shear_strength_n [N] (no other columns).");
   s.real("normal strength", 31.3, 0, inf, "N",
-         "Mean tensile strength phi_n of a bond, a force (thesis eq. 6.1: phi = 4 sigma R^2).", true);
-  s.real("shear strength", 31.3, 0, inf, "N", "Mean shear strength phi_s of a bond, a force.", true);
+         "Mean tensile strength phi_n of a bond, a force (thesis eq. 6.1: phi = 4 sigma R^2).", Interval::open_below);
+  s.real("shear strength", 31.3, 0, inf, "N", "Mean shear strength phi_s of a bond, a force.", Interval::open_below);
   s.real("strength cov", 0, 0, 10, "-",
          "Coefficient of variation of both strengths (Gaussian; thesis §6.5 uses 0, 0.25, 0.5).");
   s.real("strength floor", 0.01, 0, 1, "-", "Draws below this fraction of the mean are raised to it and counted.",
-         true);
+         Interval::open_below);
   s.real("removed fraction", 0, 0, 1, "-",
          "Fraction of installed bonds removed at random to leave frictional contacts (thesis §7.4).");
   s.real("touch tolerance", 1e-6, 0, 1, "-",
@@ -263,9 +265,9 @@ dem::BondSettings parse_bond_settings(const Deck &d)
 void declare_ball_properties(DeckSchema &s)
 {
   s.enter("balls");
-  s.real("density", 2650, 0, inf, "kg/m^3", "Density of every ball (sand: 2650).", true);
+  s.real("density", 2650, 0, inf, "kg/m^3", "Density of every ball (sand: 2650).", Interval::open_below);
   s.real("normal stiffness", 1.2e7, 0, inf, "N/m",
-         "Normal stiffness kn of every ball; a pair has kn_A kn_B / (kn_A + kn_B) (eq. 3.17).", true);
+         "Normal stiffness kn of every ball; a pair has kn_A kn_B / (kn_A + kn_B) (eq. 3.17).", Interval::open_below);
   s.real("shear stiffness", 1.2e6, 0, inf, "N/m",
          "Shear stiffness ks of every ball; a pair has ks in series (eq. 3.18).");
   s.real("friction", 0.5, 0, inf, "-", "Friction coefficient of every ball; a pair uses the smaller.");
@@ -291,7 +293,8 @@ dem::BallSpec scaled(dem::BallSpec ball, const RateScaling &rate)
 
 void declare_wall_properties(DeckSchema &s, double kn, double ks, double friction)
 {
-  s.real("normal stiffness", kn, 0, inf, "N/m", "Normal stiffness of the wall (in series with the ball's).", true);
+  s.real("normal stiffness", kn, 0, inf, "N/m", "Normal stiffness of the wall (in series with the ball's).",
+         Interval::open_below);
   s.real("shear stiffness", ks, 0, inf, "N/m", "Shear stiffness of the wall (in series with the ball's).");
   s.real("friction", friction, 0, inf, "-", "Friction coefficient of the wall (a pair uses the smaller).");
 }

@@ -21,23 +21,25 @@ void LoadingHistory::declare(DeckSchema &s)
            "top platen); 'relaxation': the strain rises at the loading rate to the hold strain, then is held; "
            "'cyclic': the strain rises to the mean strain, then oscillates about it.  Every history starts "
            "with the speed ramp of the ramp time.");
-  s.real("hold stress", 1e6, 0, inf, "Pa", "Creep: the axial stress held (compression positive).", true);
-  s.real("hold strain", 0.002, 0, 1, "-", "Relaxation: the axial strain held.", true);
-  s.real("hold time", 0.01, 0, inf, "s", "Creep and relaxation: how long the stress or strain is held.", true);
-  s.real("mean strain", 0.002, 0, 1, "-", "Cyclic: the axial strain the cycles are centred on.", true);
+  s.real("hold stress", 1e6, 0, inf, "Pa", "Creep: the axial stress held (compression positive).",
+         Interval::open_below);
+  s.real("hold strain", 0.002, 0, 1, "-", "Relaxation: the axial strain held.", Interval::open_below);
+  s.real("hold time", 0.01, 0, inf, "s", "Creep and relaxation: how long the stress or strain is held.",
+         Interval::open_below);
+  s.real("mean strain", 0.002, 0, 1, "-", "Cyclic: the axial strain the cycles are centred on.", Interval::open_below);
   s.real("strain amplitude", 0.001, 0, 1, "-",
          "Cyclic: amplitude of the sinusoid about the mean strain (at most the mean strain, so the platens "
          "stay in compression).",
-         true);
+         Interval::open_below);
   s.real("frequency", 100, 0, inf, "Hz",
          "Cyclic: frequency f of the sinusoid.  With 2 pi f a equal to the loading rate (a the amplitude) the "
          "platens enter the cycles at the ramp's speed; otherwise their speed jumps there.",
-         true);
+         Interval::open_below);
   s.integer("cycles", 2, 1, 1000000, "Cyclic: number of cycles after the mean strain is reached.");
   s.real("servo relaxation", 0.5, 0, inf, "-",
          "Creep in DEM: alpha of the platen servo (thesis eq. 3.15), the fraction of the stress error one step "
          "may correct; below 1 for a stable servo.",
-         true);
+         Interval::open_below);
 }
 
 LoadingHistory LoadingHistory::parse(const Deck &d)

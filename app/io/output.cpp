@@ -97,7 +97,14 @@ void write_atomically(const std::string &path, const std::string &content)
   std::string tmp;
   const int fd = temporary_beside(path, tmp);
   if (fd < 0)
-    output_failed(path + ".XXXXXX.tmp", "cannot write", errno);
+  {
+    // The temporary beside it could not be made: name the file the user
+    // asked for, and its folder when that is what is missing.
+    const int error = errno;
+    const std::string folder = std::filesystem::path(path).parent_path().string();
+    output_failed(path + (error == ENOENT && !folder.empty() ? " (no folder '" + folder + "')" : std::string()),
+                  "cannot write", error);
+  }
   int error = write_all(fd, content.data(), content.size());
   if (!error && fsync(fd) != 0)
     error = errno;
@@ -109,6 +116,12 @@ void write_atomically(const std::string &path, const std::string &content)
     ::unlink(tmp.c_str());
     output_failed(path, "cannot write", error);
   }
+}
+
+void remove_regular_file(const std::string &path)
+{
+  if (kind_at(path) == S_IFREG)
+    ::unlink(path.c_str());
 }
 
 void write_named_output(const std::string &path, const std::string &content)

@@ -45,6 +45,10 @@ void write_named_output(const std::string &path, const std::string &content);
 /// system cannot, nothing when the file does not exist.
 void sync_file(const std::string &path);
 
+/// Removes `path` when it is a regular file (a link, a directory or a
+/// device there is left alone); nothing when there is none.
+void remove_regular_file(const std::string &path);
+
 /// Creates a directory and its parents; throws DeckError-free std::runtime_error on failure.
 void make_directories(const std::string &path);
 

@@ -30,7 +30,7 @@ void declare_compare(DeckSchema &s)
   s.real("calibration strain", 0.002, 0, 0.1, "-",
          "Axial strain of the elastic calibration run (constant rate, every viscosity x 1e12); the measurement "
          "fit window must lie inside it.",
-         true);
+         Interval::open_below);
   s.integer("continuum degree", 2, 1, 4, "Polynomial degree of the continuum cylinder's Q_p elements.");
   s.integer("continuum refinements", 2, 1, 6,
             "Global refinements of the continuum mesh (cells about R / 2^refinements wide); the mesh error is "
@@ -47,7 +47,7 @@ void declare_compare(DeckSchema &s)
          "nonlinearity, contact changes and platen compliance leave at small strain (check V23 argues 5 %).  "
          "Outside those conditions the difference is a model-form difference, reported with the conditions that "
          "failed, never passed or failed.",
-         true);
+         Interval::open_below);
   s.leave();
 }
 

@@ -20,8 +20,9 @@ namespace
 void declare_cylinder_geometry(DeckSchema &s)
 {
   s.enter("geometry");
-  s.real("radius", 0.01555, 0, inf, "m", "Radius R of the cylinder (the DEM stand-in sample: 31.1 mm diameter).", true);
-  s.real("height", 0.0311, 0, inf, "m", "Height H of the cylinder, between R/4 and 16 R.", true);
+  s.real("radius", 0.01555, 0, inf, "m", "Radius R of the cylinder (the DEM stand-in sample: 31.1 mm diameter).",
+         Interval::open_below);
+  s.real("height", 0.0311, 0, inf, "m", "Height H of the cylinder, between R/4 and 16 R.", Interval::open_below);
   s.leave();
 }
 
@@ -34,9 +35,10 @@ void declare_cylinder(DeckSchema &s)
   s.choice("platens", "frictionless", {"frictionless", "bonded"},
            "Platen contact: 'frictionless' (axial displacement only: homogeneous, equals the 1-D closed form) or "
            "'bonded' (no radial motion on the platens: barrelling).");
-  s.real("strain rate", 0.005, 0, inf, "1/s", "Axial strain rate, compression positive (thesis §7.2.3: 0.005).", true);
+  s.real("strain rate", 0.005, 0, inf, "1/s", "Axial strain rate, compression positive (thesis §7.2.3: 0.005).",
+         Interval::open_below);
   s.real("final strain", 0.02, 0, 0.2, "-", "Axial strain at which a constant-rate test stops (small-strain theory).",
-         true);
+         Interval::open_below);
   s.real("ramp time", 0, 0, inf, "s",
          "The loading speed rises linearly from zero over this time (as the DEM platens do; creep: the stress "
          "rises over it).");
@@ -52,7 +54,8 @@ void declare_cylinder(DeckSchema &s)
   s.integer("time steps", 100, 1, 10000000,
             "Uniform time steps to the final strain, or over the whole history (trapezoidal update, order 2; a "
             "kink of the history between two step times costs the step one order).");
-  s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.", true);
+  s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.",
+         Interval::open_below);
   s.leave();
   s.enter("study");
   s.real_list("gci refinements", "", 0, 4, "-",

@@ -12,17 +12,8 @@ namespace
 
 void declare_poisson(DeckSchema &s, double value, const std::string &help)
 {
-  s.real("poisson ratio", value, -1, 0.5, "-", help + " Must lie in (-1, 0.5).", true);
-}
-
-/// Poisson's ratio of a deck key, refusing the incompressible limit 0.5
-/// (the schema's upper bound is inclusive).
-double read_poisson(const Deck &deck, const std::string &key)
-{
-  const double nu = deck.real(key);
-  if (!(nu < 0.5))
-    deck.fail(key, "expected a number > -1 and < 0.5 (nu = 0.5 is incompressible: the bulk modulus is infinite)");
-  return nu;
+  s.real("poisson ratio", value, -1, 0.5, "-", help + " (0.5 is incompressible: the bulk modulus is infinite).",
+         Interval::open);
 }
 
 continuum::BurgersChain read_contact_chain(const Deck &deck)
@@ -38,7 +29,7 @@ void measured_elasticity(const Deck &deck, double &young, double &poisson, nlohm
   if (deck.text(key).empty())
   {
     young = deck.real("material/calibrated/young modulus");
-    poisson = read_poisson(deck, "material/calibrated/poisson ratio");
+    poisson = deck.real("material/calibrated/poisson ratio");
     source = "deck";
     return;
   }
@@ -89,34 +80,39 @@ void declare_continuum_material(DeckSchema &s)
            "packing, subsections contact and affine), 'calibrated' (contact constants and an elastic run's E and "
            "nu, subsections contact and calibrated).");
   s.enter("direct");
-  s.real("young modulus", 1e9, 0, inf, "Pa", "Instantaneous Young's modulus E0 (Maxwell spring).", true);
+  s.real("young modulus", 1e9, 0, inf, "Pa", "Instantaneous Young's modulus E0 (Maxwell spring).",
+         Interval::open_below);
   declare_poisson(s, 0.3, "Instantaneous Poisson's ratio nu.");
-  s.real("maxwell viscosity", 2e9, 0, inf, "Pa s", "Young-type Maxwell viscosity eta_inf (shear: / 2(1 + nu)).", true);
-  s.real("kelvin modulus", 5e8, 0, inf, "Pa", "Young-type Kelvin modulus E1.", true);
-  s.real("kelvin viscosity", 5e8, 0, inf, "Pa s", "Young-type Kelvin viscosity eta1.", true);
+  s.real("maxwell viscosity", 2e9, 0, inf, "Pa s", "Young-type Maxwell viscosity eta_inf (shear: / 2(1 + nu)).",
+         Interval::open_below);
+  s.real("kelvin modulus", 5e8, 0, inf, "Pa", "Young-type Kelvin modulus E1.", Interval::open_below);
+  s.real("kelvin viscosity", 5e8, 0, inf, "Pa s", "Young-type Kelvin viscosity eta1.", Interval::open_below);
   s.leave();
   s.enter("contact");
   s.real("maxwell stiffness", 5.5e6, 0, inf, "N/m", "Normal Maxwell stiffness K_m of a contact (thesis Table 7.3).",
-         true);
-  s.real("maxwell viscosity", 6e4, 0, inf, "N s/m", "Normal Maxwell viscosity C_m (Table 7.3: 0.06 MN s/m).", true);
-  s.real("kelvin stiffness", 5.5e6, 0, inf, "N/m", "Normal Kelvin stiffness K_k (Table 7.3).", true);
-  s.real("kelvin viscosity", 6e4, 0, inf, "N s/m", "Normal Kelvin viscosity C_k (Table 7.3).", true);
+         Interval::open_below);
+  s.real("maxwell viscosity", 6e4, 0, inf, "N s/m", "Normal Maxwell viscosity C_m (Table 7.3: 0.06 MN s/m).",
+         Interval::open_below);
+  s.real("kelvin stiffness", 5.5e6, 0, inf, "N/m", "Normal Kelvin stiffness K_k (Table 7.3).", Interval::open_below);
+  s.real("kelvin viscosity", 6e4, 0, inf, "N s/m", "Normal Kelvin viscosity C_k (Table 7.3).", Interval::open_below);
   s.real("shear ratio", 1, 0, inf, "-",
          "r: every shear constant is r times the normal one (the same-shape condition; Table 7.3 has r = 1).");
   s.leave();
   s.enter("affine");
-  s.real("coordination number", 5.8, 0, inf, "-", "Z of the packing (thesis ch. 5: 5.8).", true);
-  s.real("solid fraction", 0.635, 0, 1, "-", "phi of the packing (thesis ch. 5: 0.635).", true);
-  s.real("particle radius", 0.885e-3, 0, inf, "m", "Radius R of the (monodisperse) particles.", true);
+  s.real("coordination number", 5.8, 0, inf, "-", "Z of the packing (thesis ch. 5: 5.8).", Interval::open_below);
+  s.real("solid fraction", 0.635, 0, 1, "-", "phi of the packing (thesis ch. 5: 0.635).", Interval::open_below);
+  s.real("particle radius", 0.885e-3, 0, inf, "m", "Radius R of the (monodisperse) particles.", Interval::open_below);
   s.leave();
   s.enter("calibrated");
   s.text("summary file", "",
          "summary.json of an elastic run (e.g. a uniaxial deck) whose initial_modulus_pa and poisson_ratio are "
          "the measured E and nu, relative to the deck; empty: use the two numbers below.");
-  s.real("young modulus", 1e8, 0, inf, "Pa", "Measured Young's modulus E (used without a summary file).", true);
+  s.real("young modulus", 1e8, 0, inf, "Pa", "Measured Young's modulus E (used without a summary file).",
+         Interval::open_below);
   declare_poisson(s, 0.2, "Measured Poisson's ratio (used without a summary file).");
   s.real("reference normal stiffness", 6e6, 0, inf, "N/m",
-         "Normal contact stiffness k_n of the elastic run (the pair value; two balls of 1.2e7 N/m give 6e6).", true);
+         "Normal contact stiffness k_n of the elastic run (the pair value; two balls of 1.2e7 N/m give 6e6).",
+         Interval::open_below);
   s.leave();
   s.leave();
 }
@@ -134,7 +130,7 @@ ContinuumMaterial parse_continuum_material(const Deck &deck)
   {
     m.solid.young = {deck.real("material/direct/young modulus"), deck.real("material/direct/maxwell viscosity"),
                      deck.real("material/direct/kelvin modulus"), deck.real("material/direct/kelvin viscosity")};
-    m.solid.poisson = read_poisson(deck, "material/direct/poisson ratio");
+    m.solid.poisson = deck.real("material/direct/poisson ratio");
     m.description = {{"source", "direct"}};
   }
   else if (source == "affine")

@@ -26,10 +26,11 @@ void declare_mms(DeckSchema &s)
   s.real_list("levels", "0, 1, 2, 3", 3, 8, "-",
               "Refinement levels (space) or halvings of the time step (time), increasing; the observed orders of "
               "the finest three are reported.");
-  s.real("duration", 2, 0, inf, "s", "Time span T of the manufactured solution.", true);
+  s.real("duration", 2, 0, inf, "s", "Time span T of the manufactured solution.", Interval::open_below);
   s.integer("time steps", 2, 1, 1000000, "Time steps at every level (space) or at level 0 (time).");
   s.integer("refinements", 0, 0, 8, "Mesh refinements of the time study.");
-  s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.", true);
+  s.real("solver tolerance", 1e-12, 0, 1e-3, "-", "Relative residual at which the CG solver stops.",
+         Interval::open_below);
   s.leave();
 }
 

@@ -23,10 +23,13 @@ void declare_burgers_ode(DeckSchema &s)
            "What the chain is: a contact (stiffnesses N/m, viscosities N s/m, displacement m, force N) or a "
            "material point in one dimension (moduli Pa, viscosities Pa s, strain, stress Pa; compression "
            "positive).");
-  s.real("maxwell spring", 1e6, 0, inf, "N/m or Pa", "Maxwell spring K0 (thesis Table 7.1: 1 MN/m).", true);
-  s.real("maxwell dashpot", 1e6, 0, inf, "N s/m or Pa s", "Maxwell dashpot C_inf (Table 7.1: 1 MN s/m).", true);
-  s.real("kelvin spring", 1e6, 0, inf, "N/m or Pa", "Kelvin spring K1 (Table 7.1: 1 MN/m).", true);
-  s.real("kelvin dashpot", 1e6, 0, inf, "N s/m or Pa s", "Kelvin dashpot C1 (Table 7.1: 1 MN s/m).", true);
+  s.real("maxwell spring", 1e6, 0, inf, "N/m or Pa", "Maxwell spring K0 (thesis Table 7.1: 1 MN/m).",
+         Interval::open_below);
+  s.real("maxwell dashpot", 1e6, 0, inf, "N s/m or Pa s", "Maxwell dashpot C_inf (Table 7.1: 1 MN s/m).",
+         Interval::open_below);
+  s.real("kelvin spring", 1e6, 0, inf, "N/m or Pa", "Kelvin spring K1 (Table 7.1: 1 MN/m).", Interval::open_below);
+  s.real("kelvin dashpot", 1e6, 0, inf, "N s/m or Pa s", "Kelvin dashpot C1 (Table 7.1: 1 MN s/m).",
+         Interval::open_below);
   s.leave();
   s.enter("loading");
   s.choice("control", "displacement", {"displacement", "force"},
@@ -38,22 +41,22 @@ void declare_burgers_ode(DeckSchema &s)
   s.real("rate", 1, -inf, inf, "m/s or 1/s",
          "Displacement (strain) rate of 'constant rate' and 'ramp and hold' "
          "(Table 7.1: 1 m/s).");
-  s.real("ramp time", 1, 0, inf, "s", "End of the ramp of 'ramp and hold'.", true);
+  s.real("ramp time", 1, 0, inf, "s", "End of the ramp of 'ramp and hold'.", Interval::open_below);
   s.real("amplitude", 0.1, -inf, inf, "m or -", "Displacement (strain) amplitude of 'cyclic'.");
-  s.real("frequency", 1, 0, inf, "Hz", "Frequency of 'cyclic'.", true);
+  s.real("frequency", 1, 0, inf, "Hz", "Frequency of 'cyclic'.", Interval::open_below);
   s.real("level", 1e6, -inf, inf, "N, Pa, m or -",
          "Level of 'step': a force (stress) under force control, a displacement (strain) otherwise.");
-  s.real("duration", 5, 0, inf, "s", "Simulated time.", true);
+  s.real("duration", 5, 0, inf, "s", "Simulated time.", Interval::open_below);
   s.leave();
   s.enter("solver");
-  s.real("relative tolerance", 1e-8, 0, 1e-2, "-", "CVODE relative tolerance rtol.", true);
+  s.real("relative tolerance", 1e-8, 0, 1e-2, "-", "CVODE relative tolerance rtol.", Interval::open_below);
   s.real("absolute tolerance", 0, 0, inf, "m or -",
          "CVODE absolute tolerance of the displacements (the force's is K0 times it); 0 selects 1e-3 rtol times "
          "the largest displacement of the history.");
   s.integer("max steps", 1000000, 1, std::numeric_limits<int>::max(), "Largest number of CVODE steps.");
   s.leave();
   s.enter("output");
-  s.real("interval", 0.01, 0, inf, "s", "Time between output rows.", true);
+  s.real("interval", 0.01, 0, inf, "s", "Time between output rows.", Interval::open_below);
   s.leave();
 }
 

@@ -33,6 +33,8 @@ std::string key_of(const std::string &setting)
     return "sample/ball radius";
   if (setting == "diameter")
     return "sample/diameter";
+  if (setting == "aspect ratio")
+    return "sample/aspect ratio";
   return "sample/particles";
 }
 
@@ -57,8 +59,6 @@ dem::PackingSettings read_settings(const Deck &d)
   s.min_contacts = static_cast<int>(d.integer("preparation/min contacts"));
   s.max_expansion = d.real("preparation/max expansion");
   s.local_damping = d.real("preparation/local damping");
-  if (s.local_damping >= 1)
-    d.fail("preparation/local damping", "expected a number < 1");
   s.bonds = parse_bond_settings(d);
   s.bond = d.text("bonds/install") == "touching";
   if (s.particles == 0 && (s.diameter <= 0 || s.height <= 0))
@@ -74,22 +74,23 @@ void declare_prepare(DeckSchema &s)
   s.integer("particles", 6000, 0, 100000000,
             "Number of balls, at least 50; 0 takes the cell diameter and height and eq. 5.1 "
             "(N = 3 V (1 - n) / (4 pi R^3)).");
-  s.real("ball radius", 0.885e-3, 0, inf, "m", "Final radius of every ball (thesis: 1.77 mm diameter sand).", true);
+  s.real("ball radius", 0.885e-3, 0, inf, "m", "Final radius of every ball (thesis: 1.77 mm diameter sand).",
+         Interval::open_below);
   s.real("diameter", 0, 0, inf, "m", "Cell diameter, used when particles = 0.");
   s.real("height", 0, 0, inf, "m", "Cell height, used when particles = 0.");
   s.real("aspect ratio", 1, 0, inf, "-", "Cell height / diameter when the number of balls is given (thesis: H = D).",
-         true);
+         Interval::open_below);
   s.real("target solid fraction", 0.64, 0, 1, "-",
          "Solid fraction 1 - n that sizes the cell (eq. 5.1); at most 0.7405 (densest packing of equal spheres).  "
          "Above random close packing (about 0.64) the grown balls are jammed and the servo stage relaxes them; "
          "below it frictionless balls never jam in a fixed cell and the servo must compact them (slowly).",
-         true);
+         Interval::open_below);
   s.integer("seed", 1, 0, std::numeric_limits<int>::max(), "Seed of the random placement.");
   s.leave();
   declare_ball_properties(s);
   s.enter("walls");
   s.real("normal stiffness", 1.2e7, 0, inf, "N/m", "Normal stiffness of the cell walls (in series with the ball's).",
-         true);
+         Interval::open_below);
   s.real("shear stiffness", 0, 0, inf, "N/m",
          "Shear stiffness of the cell walls (they are frictionless during preparation, thesis §5.3.2).");
   s.leave();
@@ -101,16 +102,17 @@ void declare_prepare(DeckSchema &s)
          "Confining stress the three walls are servo-controlled to before the radius reduction (thesis §6.1: "
          "0.1 MPa); 0 skips the servo stage.");
   s.real("stress target", 1e3, 0, inf, "Pa", "Mean stress the radius reduction must reach (thesis §5.3.2: 1 kPa).",
-         true);
+         Interval::open_below);
   s.real("equilibrium ratio", 1e-3, 0, 1, "-",
          "Unbalanced-force ratio below which a stage counts as in equilibrium (the servo and growth stages use "
          "ten times it).",
-         true);
+         Interval::open_below);
   s.integer("max cycles", 200000, 100, 2000000000, "Cycle budget of each equilibrium stage.");
   s.integer("min contacts", 4, 0, 12, "Contacts (walls count) every ball should have before bonding (thesis §5.3.3).");
   s.real("max expansion", 0.01, 0, 0.1, "-",
          "Largest relative growth of a ball with too few contacts (thesis: typically less than 1 %).");
-  s.real("local damping", 0.7, 0, 1, "-", "Local damping during preparation (must be < 1).");
+  s.real("local damping", 0.7, 0, 1, "-", "Local damping during preparation (1 would cancel every force).",
+         Interval::open_above);
   s.leave();
   declare_bonds(s, {"touching", "none"}, false);
   s.enter("output");
@@ -267,7 +269,14 @@ std::string sample_cache_dir(const std::string &deck_path)
 {
   const char *cache = std::getenv("DEMVV_CACHE");
   if (cache && *cache)
+  {
+    std::error_code ec;
+    if (std::filesystem::exists(cache, ec) && !std::filesystem::is_directory(cache, ec))
+      throw DeckError("DEMVV_CACHE='" + escaped(cache) +
+                      "': not a directory: expected a folder for prepared samples (or DEMVV_CACHE unset: samples/ "
+                      "beside the prepare deck)");
     return cache;
+  }
   const auto slash = deck_path.find_last_of('/');
   return (slash == std::string::npos ? std::string(".") : deck_path.substr(0, slash)) + "/samples";
 }

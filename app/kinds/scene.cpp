@@ -3,6 +3,7 @@
 #include "app/decks/csv_input.h"
 #include "app/decks/deck_sections.h"
 #include "app/io/input.h"
+#include "app/io/text.h"
 
 #include "dem/measure.h"
 #include "dem/neighbors.h"
@@ -36,7 +37,7 @@ void declare_cylinder(DeckSchema &s)
   s.flag("enabled", true, "Whether this cylindrical wall exists (false keeps it in the deck, switched off).");
   s.vector3("axis point", "0, 0, 0", "m", "A point on the axis.");
   s.vector3("axis", "0, 0, 1", "-", "Direction of the axis (normalised).");
-  s.real("radius", 0.01, 0, inf, "m", "Inner radius.", true);
+  s.real("radius", 0.01, 0, inf, "m", "Inner radius.", Interval::open_below);
   s.real("radial velocity", 0, -inf, inf, "m/s", "Rate of change of the radius (> 0 expands).");
   declare_wall_properties(s, 1.2e7, 0, 0);
 }
@@ -79,7 +80,7 @@ void declare_scene(DeckSchema &s)
   declare_rate(s);
   declare_motion(s, "0, 0, 0", 0.7);
   s.enter("run");
-  s.real("duration", 1e-3, 0, inf, "s", "Simulated time.", true);
+  s.real("duration", 1e-3, 0, inf, "s", "Simulated time.", Interval::open_below);
   s.leave();
   s.enter("output");
   // A row costs about half a step (energies, counts, coordination): rows
@@ -144,7 +145,7 @@ void check_overlaps(const CsvTable &t, const dem::ParticleStore &p)
 
 dem::ParticleStore parse_particles(const Deck &deck)
 {
-  const CsvTable t = CsvTable::read(deck.file("particles/file"));
+  const CsvTable t = CsvTable::read(deck.input_file("particles/file"));
   t.allow_only({"x_m", "y_m", "z_m", "radius_m", "vx_mps", "vy_mps", "vz_mps", "wx_radps", "wy_radps", "wz_radps",
                 "density_kgpm3", "kn_npm", "ks_npm", "friction", "hold_velocity", "hold_spin"},
                "a particle file");
@@ -194,7 +195,16 @@ dem::ParticleStore parse_particles(const Deck &deck)
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(b.position[k]) || !std::isfinite(b.velocity[k]) || !std::isfinite(b.spin[k]))
         throw DeckError(t.path() + ":" + std::to_string(t.line(r)) + ": non-finite position, velocity or spin");
-    p.add(b);
+    const dem::Index i = p.add(b);
+    // The step bound divides by the mass and the moment of inertia: both
+    // must be normal numbers, neither 0 by underflow nor infinite.
+    const auto normal = [](double v) { return v >= std::numeric_limits<double>::min() && std::isfinite(v); };
+    if (!normal(p.mass[i]) || !normal(p.inertia[i]))
+      t.fail(r, "radius_m",
+             "gives a ball of mass " + format_number(p.mass[i]) + " kg and moment of inertia " +
+               format_number(p.inertia[i]) +
+               " kg m^2: expected a radius whose mass and moment of inertia are "
+               "finite and above 2.2e-308");
   }
   check_overlaps(t, p);
   return p;

@@ -36,9 +36,11 @@ void declare_uniaxial(DeckSchema &s)
          "For source = file: a sample file (.json) written by a prepare run, or a prepare deck (.prm) whose "
          "sample is prepared on first use and cached in samples/ beside that deck ($DEMVV_CACHE when set).");
   s.choice("lattice", "fcc", {"fcc", "sc"}, "For source = lattice: face-centred or simple cubic.");
-  s.real("ball radius", 0.885e-3, 0, inf, "m", "Radius of every ball (thesis: 1.77 mm diameter sand).", true);
-  s.real("diameter", 0.0311, 0, inf, "m", "Target diameter of the sample (the rim balls fit inside).", true);
-  s.real("height", 0.0311, 0, inf, "m", "Target height of the sample (the balls fit inside).", true);
+  s.real("ball radius", 0.885e-3, 0, inf, "m", "Radius of every ball (thesis: 1.77 mm diameter sand).",
+         Interval::open_below);
+  s.real("diameter", 0.0311, 0, inf, "m", "Target diameter of the sample (the rim balls fit inside).",
+         Interval::open_below);
+  s.real("height", 0.0311, 0, inf, "m", "Target height of the sample (the balls fit inside).", Interval::open_below);
   s.leave();
   declare_ball_properties(s);
   declare_contact_law(s);
@@ -50,10 +52,10 @@ void declare_uniaxial(DeckSchema &s)
   s.choice("control", "platen speed", {"platen speed", "strain rate"},
            "Which of the two next entries sets the loading rate.");
   s.real("platen speed", 0.01, 0, inf, "m/s",
-         "Approach speed of the platens (thesis §6.3-6.4: 0.01 m/s is quasi-static).", true);
-  s.real("strain rate", 0.3, 0, inf, "1/s", "Axial strain rate (compression positive).", true);
+         "Approach speed of the platens (thesis §6.3-6.4: 0.01 m/s is quasi-static).", Interval::open_below);
+  s.real("strain rate", 0.3, 0, inf, "1/s", "Axial strain rate (compression positive).", Interval::open_below);
   s.real("ramp time", 0, 0, inf, "s", "The platen speed rises linearly from zero over this time (thesis §6.1).");
-  s.real("final strain", 0.03, 0, 1, "-", "Axial strain at which the test stops (thesis: 3 %).", true);
+  s.real("final strain", 0.03, 0, 1, "-", "Axial strain at which the test stops (thesis: 3 %).", Interval::open_below);
   s.choice("moving platens", "top", {"top", "both"},
            "'top': the top platen moves, the bottom one is fixed (thesis); 'both': each moves at half speed "
            "(not for creep: its servo drives the top platen).");
@@ -64,11 +66,11 @@ void declare_uniaxial(DeckSchema &s)
   s.enter("measurement");
   s.real("gauge thickness", 0.8, 0, 1, "-",
          "Height of the central band of radial-strain gauges as a fraction of the sample height (thesis §5.4.3).",
-         true);
+         Interval::open_below);
   s.real("sphere radius", 0.3, 0, 0.5, "-",
          "Radius of the two measurement spheres (on the axis at 1/3 and 2/3 of the height) as a fraction of "
          "the sample diameter.",
-         true);
+         Interval::open_below);
   s.real_list("gauge study", "", 0, 20, "-",
               "Extra gauge thicknesses (fractions of the height) whose radial strain is recorded beside that of "
               "all circumference balls, as in thesis Fig. 5.13; empty for none.  Writes gauge_study.csv.");
@@ -76,11 +78,12 @@ void declare_uniaxial(DeckSchema &s)
               "Axial strain interval over which the initial modulus and Poisson's ratio are fitted.");
   s.leave();
   s.enter("output");
-  s.real("strain interval", 1e-4, 0, 1, "-", "Axial strain between output rows (constant-rate history).", true);
+  s.real("strain interval", 1e-4, 0, 1, "-", "Axial strain between output rows (constant-rate history).",
+         Interval::open_below);
   s.real("time interval", 0, 0, inf, "s",
          "Time between output rows of the other histories (creep, relaxation, cyclic); 0: 1/500 of the test.");
   s.flag("paraview", false, "Write ParaView files (particles, contact forces, broken bonds) to paraview/.");
-  s.real("paraview strain interval", 0.005, 0, 1, "-", "Axial strain between ParaView frames.", true);
+  s.real("paraview strain interval", 0.005, 0, 1, "-", "Axial strain between ParaView frames.", Interval::open_below);
   declare_checkpoint_interval(s);
   s.leave();
 }

@@ -378,6 +378,8 @@ std::vector<DrawnFigure> draw_figures(const std::vector<Figure> &figures, const 
       d.problem = run_gnuplot(dir, f.name);
     if (d.drawn())
       d.svg = dir + "/" + f.name + ".svg";
+    else
+      remove_regular_file(dir + "/" + f.name + ".svg"); // an earlier drawing's, not of these data
     out.push_back(std::move(d));
   }
   return out;

@@ -583,6 +583,31 @@ std::vector<Figure> run_figures(const std::string &run_dir, const DeckKinds &kin
 
 std::vector<DrawnFigure> plot_run(const std::string &run_dir, const DeckKinds &kinds)
 {
-  return draw_figures(run_figures(run_dir, kinds), run_dir + "/plots");
+  const std::string dir = run_dir + "/plots";
+  std::vector<DrawnFigure> figures = draw_figures(run_figures(run_dir, kinds), dir);
+  // A figure of an earlier drawing that these data no longer give (a
+  // column or a kind changed) would be read as this run's: its files go,
+  // and the line of figures not drawn says so.  Only figures demvv wrote
+  // (a NAME.gp beside them) are touched, never through a link.
+  std::vector<std::string> drawn_now;
+  for (const DrawnFigure &f : figures)
+    drawn_now.push_back(f.name);
+  std::error_code ec;
+  std::vector<std::string> stale;
+  for (const auto &entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.path().extension() == ".gp" && entry.symlink_status(ec).type() == std::filesystem::file_type::regular &&
+        std::find(drawn_now.begin(), drawn_now.end(), entry.path().stem().string()) == drawn_now.end())
+      stale.push_back(entry.path().stem().string());
+  std::sort(stale.begin(), stale.end());
+  for (const std::string &name : stale)
+  {
+    for (const char *extension : {".gp", ".svg", ".csv", ".log"})
+      remove_regular_file(dir + "/" + name + extension);
+    DrawnFigure gone;
+    gone.name = name;
+    gone.problem = "removed, a figure of an earlier drawing that these data no longer give";
+    figures.push_back(gone);
+  }
+  return figures;
 }
 } // namespace demvv

@@ -410,6 +410,13 @@ bool Calibration::met(const Point &p) const
   return true;
 }
 
+/// Whether parameter j moves no target at evaluation e (every slope exactly
+/// 0: with the same seeds at every point, its runs were identical).
+bool moves_no_target(const Evaluation &e, std::size_t j)
+{
+  return std::all_of(e.slope.begin(), e.slope.end(), [j](const std::vector<double> &row) { return row[j] == 0; });
+}
+
 /// (A^T S^-1 A)^-1 for a Jacobian A [target][parameter] and variances S;
 /// empty when singular.
 std::vector<std::vector<double>> covariance(const std::vector<std::vector<double>> &A,
@@ -505,7 +512,7 @@ void Calibration::write_outputs(const std::string &status, const Evaluation *fin
       const double value = std::stod(e->centre.values[j]);
       p["value"] = value;
       p["deck_value"] = e->centre.values[j];
-      if (!cov_all.empty())
+      if (!cov_all.empty() && !moves_no_target(*e, j))
       {
         p["standard_error"] = finite_or_null(value * std::sqrt(cov_all[j][j]));
         p["standard_error_seeds"] = finite_or_null(value * std::sqrt(cov_seeds[j][j]));
@@ -671,6 +678,23 @@ int Calibration::run()
     stop_message_ = std::string("the fit could not start: ") + gsl_strerror(status);
 
   const Evaluation *final = history_.empty() ? nullptr : evaluate(values_at(gsl_multifit_nlinear_position(w.get())));
+  // A parameter no target moves (every slope exactly 0: with the same seeds
+  // at every point, the runs were identical) is not determined by the
+  // targets, however well they are met: its standard error is unbounded.
+  if (final != nullptr && outcome == "converged")
+  {
+    std::string idle;
+    for (std::size_t j = 0; j < p; ++j)
+      if (moves_no_target(*final, j))
+        idle += (idle.empty() ? "" : ", ") + parameters_[j].name;
+    if (!idle.empty())
+    {
+      outcome = "not determined";
+      stop_message_ = "no target moves with " + idle +
+                      " (every slope exactly 0 over the seeds): the targets do not determine it; expected a "
+                      "parameter the targets depend on";
+    }
+  }
   if (exit_code_ != 0)
   {
     const bool interrupted = exit_code_ >= 128;

@@ -85,6 +85,10 @@ Varied parse_vary(const std::string &arg, const Deck &base)
     if (!deck_declares(base, key))
       throw DeckError("--vary '" + arg + "': " + base.path() + " (kind " + base.kind() + ") has no entry '" + key +
                       "': expected an entry that `demvv defaults " + base.kind() + "` lists");
+    if (base.holds_list(key))
+      throw DeckError("--vary '" + escaped(arg) + "': '" + key +
+                      "' holds a comma-separated vector or list, and --vary separates its values by commas: "
+                      "expected a single-number entry (run one deck per vector instead)");
     v.keys.push_back(key);
   }
   if (v.keys.empty())
@@ -643,6 +647,8 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
   }
   catch (const std::exception &)
   {
+    throw DeckError(named + ": its sweep.json cannot be read as a sweep's record (damaged or edited): expected the "
+                            "file demvv wrote, or --replace to start the sweep over");
   }
   if (before != labels)
     throw DeckError(named + " holds another sweep (other members): expected the same --vary and --seeds to resume "
@@ -725,6 +731,47 @@ bool deck_declares(const Deck &deck, const std::string &key)
   }
 }
 
+/// Parses the deck of every point (its kind's parse reads the entries it
+/// uses, runs nothing).  A point refused beside others that run is a finding
+/// of the sweep (its row says why); a sweep whose every point is refused
+/// would run nothing, and a varied entry that no point's deck reads would run
+/// the same member under different labels: both are refused.
+void refuse_idle_factors(const SweepPlan &plan)
+{
+  if (plan.keys.empty())
+    return;
+  std::string first_refusal;
+  std::vector<bool> read(plan.keys.size(), false);
+  bool any_accepted = false;
+  for (const auto &point : plan.points)
+  {
+    std::vector<std::string> overrides;
+    for (std::size_t k = 0; k < plan.keys.size(); ++k)
+      overrides.push_back(plan.keys[k] + "=" + point[k]);
+    try
+    {
+      const Deck deck = Deck::from_file(deck_kinds(), plan.base_deck, overrides);
+      deck.kind_row().parse(deck);
+      any_accepted = true;
+      for (std::size_t k = 0; k < plan.keys.size(); ++k)
+        read[k] = read[k] || deck.was_read(plan.keys[k]);
+    }
+    catch (const DeckError &e)
+    {
+      if (first_refusal.empty())
+        first_refusal = e.what();
+    }
+  }
+  if (!any_accepted)
+    throw DeckError("sweep of " + plan.base_deck + ": the deck refuses every point (the first: " + first_refusal +
+                    "): expected values the deck accepts");
+  for (std::size_t k = 0; k < plan.keys.size(); ++k)
+    if (!read[k])
+      throw DeckError("sweep of " + plan.base_deck + ": no point's deck reads '" + plan.keys[k] +
+                      "' (its other entries make the run ignore it: another contact law, sample source or "
+                      "history): expected an entry the members use (varying it would run identical members)");
+}
+
 SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
 {
   const continuum::ParallelInfo mpi = study_ranks();
@@ -743,33 +790,7 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
                     std::to_string(std::max(plan.seeds, 1)) + " seed(s) = " + std::to_string(count) +
                     " members: expected at most " + std::to_string(o.max_members) +
                     " (--max-members N to allow more, knowing each member is a run)");
-  // A point refused beside others that run is a finding of the sweep (its
-  // row says why); a sweep whose every point is refused would run nothing.
-  if (!plan.keys.empty())
-  {
-    std::string first_refusal;
-    const bool any_accepted = std::any_of(plan.points.begin(), plan.points.end(),
-                                          [&](const auto &point)
-                                          {
-                                            std::vector<std::string> overrides;
-                                            for (std::size_t k = 0; k < plan.keys.size(); ++k)
-                                              overrides.push_back(plan.keys[k] + "=" + point[k]);
-                                            try
-                                            {
-                                              Deck::from_file(deck_kinds(), plan.base_deck, overrides);
-                                              return true;
-                                            }
-                                            catch (const DeckError &e)
-                                            {
-                                              if (first_refusal.empty())
-                                                first_refusal = e.what();
-                                              return false;
-                                            }
-                                          });
-    if (!any_accepted)
-      throw DeckError("sweep of " + plan.base_deck + ": the deck refuses every point (the first: " + first_refusal +
-                      "): expected values the deck accepts");
-  }
+  refuse_idle_factors(plan);
   std::vector<Member> members = plan_members(plan);
   std::unique_ptr<DirectoryLock> lock; // rank 0's, for the whole sweep
   on_rank_zero_for_all(true,

@@ -94,7 +94,7 @@ TEST_CASE("bad particle files are refused naming file and line and column", "[de
   require_one_line_naming(error_of(write_deck("nan.prm", scene("", data + "/not_a_number.csv"))),
                           {"not_a_number.csv:3", "z_m", "'zero'", "expected a number"});
   require_one_line_naming(error_of(write_deck("absent.prm", scene("", data + "/no_such_file.csv"))),
-                          {"no_such_file.csv", "cannot open"});
+                          {"no_such_file.csv", "particles/file", "no file", "expected an existing file"});
 }
 
 TEST_CASE("a wall overlapping a ball at the start is refused", "[deck]")

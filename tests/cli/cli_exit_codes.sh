@@ -28,6 +28,11 @@ DEMVV_CACHE="$out/cache" "$demvv" run "$data/../../cases/t61_damage/case.prm" --
   fail "a run on a 200-ball prepared sample must succeed"
 [ "$(wc -l < "$out/err")" -eq 1 ] || fail "--quiet must leave one line on stderr, not $(wc -l < "$out/err")"
 grep -q "^demvv: done" "$out/err" || fail "the line --quiet leaves is the final one"
+# A DEMVV_CACHE that is a file is named as the cause.
+DEMVV_CACHE="$out/err" "$demvv" run "$data/../../cases/t61_damage/case.prm" --out "$out/cache_file" --threads 1 \
+  --quiet --set "sample/file=$data/prepare_200.prm" 2> "$out/err_cache"
+[ $? -eq 2 ] && grep -q "DEMVV_CACHE='$out/err': not a directory" "$out/err_cache" ||
+  fail "a DEMVV_CACHE that is a file: $(cat "$out/err_cache")"
 
 # A test meant to be quasi-static that is not (a platen at 300 m/s crushes
 # the lattice in four steps) ends with exit 0 and a warning naming the

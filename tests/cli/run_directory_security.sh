@@ -83,6 +83,18 @@ echo precious > "$work/precious"
 ln -s "$work/precious" "$work/r/plots/energy.log"
 "$demvv" plot "$work/r" 2>/dev/null || fail "plot of a run with a planted link failed"
 [ "$(cat "$work/precious")" = precious ] || fail "plot wrote through a planted link"
+# Figures an earlier drawing made that the data no longer give (the
+# summary's kind edited) are removed and said; a user's file stays, and so
+# does what a planted link points at.
+cp -a "$work/r" "$work/stale"
+echo notes > "$work/stale/plots/notes.svg"
+ln -sf "$work/precious" "$work/stale/plots/linked.gp"
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['kind']='mms'; json.dump(d,open(sys.argv[1],'w'))" \
+  "$work/stale/summary.json"
+"$demvv" plot "$work/stale" 2>"$work/err" || fail "plot of a run with another kind failed: $(cat "$work/err")"
+grep -q "energy: removed, a figure of an earlier drawing" "$work/err" && [ ! -e "$work/stale/plots/energy.svg" ] &&
+  [ ! -e "$work/stale/plots/energy.gp" ] && [ -f "$work/stale/plots/notes.svg" ] &&
+  [ "$(cat "$work/precious")" = precious ] || fail "stale figures: $(cat "$work/err"); $(ls "$work/stale/plots")"
 
 # 2. Outputs the user names: a pipe written through, a link refused, - is stdout.
 mkfifo "$work/pipe"

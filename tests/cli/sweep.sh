@@ -131,6 +131,18 @@ one_line "$work/err" "key tied to itself"
 "$demvv" sweep "$work/base.prm" --vary "bonds/normal strength+=3" --out "$work/d" 2>"$work/err"
 [ $? -eq 2 ] && grep -q "deck entries and their values" "$work/err" && [ ! -e "$work/d" ] || fail "an empty tied key: $(cat "$work/err")"
 one_line "$work/err" "empty tied key"
+# An entry no member's deck reads (another law's constant) would run
+# identical members under different labels.
+"$demvv" sweep "$work/base.prm" --vary "contact law/normal maxwell stiffness=1e5,2e5" --out "$work/d" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "no point's deck reads 'contact law/normal maxwell stiffness'" "$work/err" && [ ! -e "$work/d" ] ||
+  fail "a key the deck ignores: $(cat "$work/err")"
+one_line "$work/err" "key the deck ignores"
+# A damaged sweep.json is said to be damaged, not another sweep's.
+cp -a "$work/a" "$work/damaged" && echo '{' > "$work/damaged/sweep.json"
+sweep --out "$work/damaged" 2>"$work/err"
+[ $? -eq 2 ] && grep -q "sweep.json cannot be read" "$work/err" || fail "a damaged sweep.json: $(cat "$work/err")"
+one_line "$work/err" "damaged sweep.json"
+rm -rf "$work/damaged"
 sweep --out "$work/a" --replace --quiet 2>"$work/err" || fail "--replace of a sweep directory failed: $(cat "$work/err")"
 [ "$(without_time "$work/a/sweep.csv")" = "$(without_time "$work/a_before/sweep.csv")" ] || fail "--replace changed the table"
 

@@ -304,7 +304,7 @@ TEST_CASE("bad continuum decks are refused with one line naming file, key, value
      {"material/direct/poisson ratio", "'0.5'", "expected a number > -1 and < 0.5"}},
     {"poisson_high.prm",
      "set kind = mms\nsubsection material\n  subsection direct\n    set poisson ratio = 0.7\n  end\nend\n",
-     {"material/direct/poisson ratio", "'0.7'", "expected a number > -1 and <= 0.5"}},
+     {"material/direct/poisson ratio", "'0.7'", "expected a number > -1 and < 0.5"}},
     {"poisson_low.prm",
      "set kind = cylinder\nsubsection material\n  set source = calibrated\n  subsection calibrated\n"
      "    set poisson ratio = -1\n  end\nend\n",
