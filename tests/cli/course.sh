@@ -38,7 +38,7 @@ expect runs/course/e1-burgers/report.md "1 of 1 checks pass" "exercise 1: V14 pa
 for f in e1-integrator/report.html e2-tension/plots/contact_forces.svg e3-gci/plots/gci_peak_stress_pa.svg \
          e3-gci/plots/levels.svg e3-step-0.2/plots/stress_strain.svg e4-scaling/report.html \
          e6-rate-0.5/plots/stress_strain.svg e8-space-q2/plots/convergence.svg e8-space-q1/own_order_stress_l2.svg \
-         e8-time/own_order_displacement_l2.svg; do
+         e8-time/own_order_displacement_l2.svg e9-seeds/stats.csv; do
   [ -s "$work/runs/course/$f" ] || { echo "FAIL: runs/course/$f was not written"; fail=1; }
 done
 expect runs/course/e2-report/report.md "1 of 1 checks pass" "exercise 2: V02 passes"
