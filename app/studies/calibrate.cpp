@@ -323,7 +323,21 @@ const Evaluation *Calibration::evaluate(const std::vector<std::string> &values)
   settings.out_dir = o_.settings.out_dir + "/evaluations/" + name;
   settings.replace = false;
   settings.figures = false;
-  const SweepOutcome outcome = run_sweep(plan, settings);
+  SweepOutcome outcome;
+  try
+  {
+    outcome = run_sweep(plan, settings);
+  }
+  catch (const DeckError &e)
+  {
+    // The start is the user's: its refusal is bad input.  A point the fit
+    // stepped to is the fit's: the targets lie beyond what the deck accepts.
+    if (history_.empty())
+      throw;
+    stop_message_ = std::string("the fit stepped to values the deck refuses (") + e.what() +
+                    "): the targets cannot be reached within them";
+    return nullptr;
+  }
   if (outcome.exit_code != 0)
   {
     exit_code_ = outcome.exit_code;
@@ -658,7 +672,8 @@ int Calibration::run()
     }
     if (status != GSL_SUCCESS)
     {
-      stop_message_ = std::string("the fit stopped: ") + gsl_strerror(status);
+      if (stop_message_.empty()) // else the evaluation said why
+        stop_message_ = std::string("the fit stopped: ") + gsl_strerror(status);
       break;
     }
     int info = 0;
@@ -711,7 +726,7 @@ int Calibration::run()
     return 3;
   }
   write_outputs(outcome, final);
-  if (mpi_.rank == 0 && final != nullptr)
+  if (mpi_.rank == 0 && !history_.empty())
   {
     const nlohmann::json doc = nlohmann::json::parse(read_file(o_.settings.out_dir + "/calibration.json"));
     std::cerr << "demvv: calibration " << outcome << " after " << iteration_ << " iterations, " << history_.size()

@@ -18,7 +18,8 @@
 # 4. bad input: an entry the deck lacks, an unknown quantity, too few seeds
 #    (exit 2, one line); an evaluation that faults (exit 3, one line, the
 #    evaluations kept, no fitted deck); an unreachable target (30 MPa at 0.4 % strain; exit 3,
-#    "not converged"); a parameter no target moves (exit 3, "not determined", no standard error).
+#    "not converged"); a target beyond every value the deck accepts (exit 3, not converged);
+#    a parameter no target moves (exit 3, "not determined", no standard error).
 # 5. under MPI two ranks give the same fit, byte for byte, as one process.
 # Usage: calibrate.sh DEMVV WORK_DIR [MPIRUN]
 set -u
@@ -131,6 +132,12 @@ expect 3 "not converged" unreachable -- "$demvv" calibrate "$lattice" --fit "$st
   --target peak_stress_pa=3e7 --seeds 2 --max-iterations 2 --out "$work/unreachable" --threads 1 --quiet
 [ "$(field "$work/unreachable/calibration.json" 'd["status"]')" = "not converged" ] ||
   fail "an unreachable target is not recorded as not converged"
+# A target so far off that the fit steps beyond what the deck accepts (a
+# strength of inf) is not reached: said so, not called bad input.
+expect 3 "the fit stepped to values the deck refuses" beyond -- "$demvv" calibrate "$lattice" \
+  --fit "$strength=10" --target peak_stress_pa=1e12 --seeds 2 --max-iterations 4 --out "$work/beyond" --threads 1 --quiet
+[ "$(field "$work/beyond/calibration.json" 'd["status"]')" = "not converged" ] ||
+  fail "a fit stepped beyond the deck is not recorded as not converged"
 # A parameter no target moves (this lattice's friction: its bonds hold
 # every contact by the peak) meets the target without determining anything.
 expect 3 "no target moves with balls/friction" idle -- "$demvv" calibrate "$lattice" --fit "balls/friction=0.5" \
