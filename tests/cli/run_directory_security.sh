@@ -104,6 +104,11 @@ reader=$!
 wait $reader
 [ -p "$work/pipe" ] || fail "catalogue replaced a pipe by a regular file"
 grep -q "verification catalogue" "$work/from_pipe" || fail "catalogue did not write through the pipe"
+# A pipe nobody reads is refused after a few seconds, not waited on forever.
+mkfifo "$work/unread_pipe"
+timeout 30 "$demvv" catalogue --out "$work/unread_pipe" 2>"$work/err"
+[ $? -eq 4 ] && grep -q "no process opened for reading" "$work/err" || fail "a pipe nobody reads: $(cat "$work/err")"
+one_line "$work/err" "a pipe nobody reads"
 echo precious > "$work/target.md"
 ln -s "$work/target.md" "$work/link.md"
 "$demvv" catalogue --out "$work/link.md" 2>"$work/err"
