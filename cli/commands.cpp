@@ -118,24 +118,23 @@ int command_run(const std::string &deck_path, const std::vector<std::string> &ov
                     "for scene and uniaxial decks (or a run without it)");
   std::unique_ptr<DirectoryLock> lock; // held until the run, its figures and its summary are done
   ParsedRun parsed;                    // the claim's parse, run below (parsed once)
-  on_rank_zero_for_all(
-    kind->on_every_mpi_rank,
-    [&]
-    {
-      lock = std::make_unique<DirectoryLock>(o.out_dir, "run");
-      if (!o.resume)
-      {
-        std::vector<std::string> inputs = deck.input_files();
-        if (!deck.path().empty())
-          inputs.push_back(std::filesystem::weakly_canonical(std::filesystem::absolute(deck.path())).string());
-        claim_run_directory(
-          o.out_dir, o.replace, [&] { parsed = kind->parse(deck); }, inputs);
-      }
-      else if (!marked_as(o.out_dir, "run"))
-        throw DeckError("--resume '" + o.out_dir + "': holds no demvv marker (" + ownership_marker +
-                        "), so it is no run directory demvv made: expected the directory of a paused or interrupted "
-                        "run");
-    });
+  on_rank_zero_for_all(kind->on_every_mpi_rank,
+                       [&]
+                       {
+                         lock = std::make_unique<DirectoryLock>(o.out_dir, "run");
+                         if (!o.resume)
+                         {
+                           std::vector<std::string> inputs = deck.input_files();
+                           if (!deck.path().empty())
+                             inputs.push_back(
+                               std::filesystem::weakly_canonical(std::filesystem::absolute(deck.path())).string());
+                           claim_run_directory(
+                             o.out_dir, o.replace, [&] { parsed = kind->parse(deck); }, inputs);
+                         }
+                         else if (const std::string problem = marker_problem(o.out_dir, "run"); !problem.empty())
+                           throw DeckError("--resume '" + o.out_dir + "': no run directory demvv made (" + problem +
+                                           "): expected the directory of a paused or interrupted run");
+                       });
   if (o.resume)
     check_resumable(o.out_dir, deck);
   RunStatus status;

@@ -165,10 +165,28 @@ void mark_directory(const std::string &dir, const std::string &what)
                      "\n");
 }
 
-bool marked_as(const std::string &dir, const std::string &what)
+bool marked_as(const std::string &dir, const std::string &what) { return marker_problem(dir, what).empty(); }
+
+std::string marker_problem(const std::string &dir, const std::string &what)
 {
-  const nlohmann::json doc = json_object_in(dir + "/" + ownership_marker, "demvv marker", 1 << 16);
-  return doc.value("made_by", nlohmann::json()) == "demvv" && doc.value("holds", nlohmann::json()) == what;
+  const std::string path = dir + "/" + ownership_marker;
+  struct stat st
+  {
+  };
+  if (::lstat(path.c_str(), &st) != 0)
+    return std::string("it lacks demvv's marker ") + ownership_marker;
+  const nlohmann::json doc = json_object_in(path, "demvv marker", 1 << 16);
+  if (doc.empty())
+    return std::string("its marker ") + ownership_marker +
+           " cannot be read (a link, not JSON, or over 64 kB: damaged or edited)";
+  if (doc.value("made_by", nlohmann::json()) != "demvv")
+    return std::string("its marker ") + ownership_marker + " does not say demvv made it (edited)";
+  const nlohmann::json holds = doc.value("holds", nlohmann::json());
+  if (holds != what)
+    return std::string("its marker ") + ownership_marker + " says it holds a " +
+           (holds.is_string() ? one_line(holds.get<std::string>().substr(0, 20), '?') : std::string("(nothing)")) +
+           ", not a " + what;
+  return "";
 }
 
 DirectoryLock::DirectoryLock(const std::string &dir, const std::string &what)
@@ -288,9 +306,11 @@ bool claim_resumable_directory(const std::string &dir, bool replace, const std::
     mark_directory(dir, what);
     return false;
   }
-  if (!marked_as(dir, what) || !std::filesystem::exists(std::filesystem::path(dir) / record))
-    throw DeckError(named + " is not empty and is no " + what + " directory demvv made (it lacks demvv's marker " +
-                    ownership_marker + (record == ownership_marker ? "" : " or " + record) +
+  std::string problem = marker_problem(dir, what);
+  if (problem.empty() && !std::filesystem::exists(std::filesystem::path(dir) / record))
+    problem = "it lacks the " + what + "'s " + record;
+  if (!problem.empty())
+    throw DeckError(named + " is not empty and is no " + what + " directory demvv made (" + problem +
                     "): expected a new or empty directory (--out), or a " + what + "'s own to resume or replace");
   if (!replace)
     return true;
@@ -308,11 +328,9 @@ void claim_run_directory(const std::string &dir, bool replace, const std::functi
   if (!replace)
     throw DeckError(named + " is not empty: expected a new or empty directory (--out), or --replace to replace "
                             "the run there whole");
-  if (!marked_as(dir, "run"))
-    throw DeckError(named + " is not empty and holds no demvv marker of a run (" + std::string(ownership_marker) +
-                    " is absent, unreadable, edited, or made for a sweep, calibration or report), so it is no run "
-                    "directory demvv made: --replace replaces only those: expected a run directory or a new or "
-                    "empty one (--out)");
+  if (const std::string problem = marker_problem(dir, "run"); !problem.empty())
+    throw DeckError(named + " is not empty and is no run directory demvv made (" + problem +
+                    "): --replace replaces only those: expected a run directory or a new or empty one (--out)");
   validate();
   remove_outputs(dir, "run", inputs);
 }

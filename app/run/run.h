@@ -170,6 +170,10 @@ bool matches_entry(const std::string &name, const std::vector<std::string> &patt
 void mark_directory(const std::string &dir, const std::string &what);
 /// Whether `dir` holds demvv's marker for `what` (a regular file, read within limits).
 bool marked_as(const std::string &dir, const std::string &what);
+/// Why `dir` is not marked as holding `what` ("it lacks demvv's marker
+/// .demvv", "its marker ... says it holds a sweep, not a run", ...); "" when
+/// it is.
+std::string marker_problem(const std::string &dir, const std::string &what);
 
 /// An exclusive lock on a directory for as long as the object lives (made
 /// when absent).  DeckError naming the directory and the process that

@@ -52,7 +52,7 @@ grep -q "run directory '$work/r' is not empty" "$work/err" && grep -q -- "--repl
 # an ordinary folder, and never a path that is not a directory.
 mkdir "$work/notes" && echo keep > "$work/notes/keep.txt"
 run "$impact" --out "$work/notes" --replace 2>"$work/err"
-[ $? -eq 2 ] && grep -q "holds no demvv marker" "$work/err" || fail "--replace of a folder that is no run directory: $(cat "$work/err")"
+[ $? -eq 2 ] && grep -q "lacks demvv's marker" "$work/err" || fail "--replace of a folder that is no run directory: $(cat "$work/err")"
 [ -f "$work/notes/keep.txt" ] || fail "--replace removed files of a folder that is no run directory"
 echo text > "$work/file"
 run "$impact" --out "$work/file" 2>"$work/err"

@@ -124,11 +124,19 @@ cp "$cases/v01_linear_impact/balls.csv" "$work/mine/"
 sed "s|set file = .*balls.csv|set file = balls.csv|" "$work/r/deck.prm" > "$work/mine/deck.prm"
 echo notes > "$work/mine/notes.txt"
 (cd "$work/mine" && "$demvv" run deck.prm --out . --replace --quiet --threads 1) 2>"$work/err"
-[ $? -eq 2 ] && grep -q "holds no demvv marker" "$work/err" || fail "--replace of a working folder: $(cat "$work/err")"
+[ $? -eq 2 ] && grep -q "lacks demvv's marker" "$work/err" || fail "--replace of a working folder: $(cat "$work/err")"
 one_line "$work/err" "--replace of a working folder"
 [ -f "$work/mine/deck.prm" ] && [ -f "$work/mine/balls.csv" ] && [ -f "$work/mine/notes.txt" ] ||
   fail "--replace of a working folder removed files: $(ls "$work/mine")"
 [ ! -e "$work/mine/.demvv.lock" ] || fail "a refused run left its lock file in a foreign folder"
+# A marker of another kind, or one that cannot be read, is said to be so.
+for marker in '{"made_by": "demvv", "holds": "sweep"}' 'not json'; do
+  mkdir -p "$work/marked" && echo notes > "$work/marked/notes.txt" && printf '%s' "$marker" > "$work/marked/.demvv"
+  run "$impact" --out "$work/marked" --replace 2>"$work/err"
+  [ $? -eq 2 ] && grep -Eq "says it holds a sweep, not a run|cannot be read" "$work/err" &&
+    [ -f "$work/marked/notes.txt" ] || fail "--replace over the marker '$marker': $(cat "$work/err")"
+  rm -rf "$work/marked"
+done
 # Through a link too: a refused --out leaves the folder it points at as it was.
 mkdir "$work/victim" && echo notes > "$work/victim/notes.txt" && ln -s "$work/victim" "$work/link"
 run "$impact" --out "$work/link" 2>"$work/err"
