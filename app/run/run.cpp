@@ -178,7 +178,7 @@ std::string marker_problem(const std::string &dir, const std::string &what)
   const nlohmann::json doc = json_object_in(path, "demvv marker", 1 << 16);
   if (doc.empty())
     return std::string("its marker ") + ownership_marker +
-           " cannot be read (a link, not JSON, or over 64 kB: damaged or edited)";
+           " cannot be read: a link, not JSON or over 64 kB, damaged or edited";
   if (doc.value("made_by", nlohmann::json()) != "demvv")
     return std::string("its marker ") + ownership_marker + " does not say demvv made it (edited)";
   const nlohmann::json holds = doc.value("holds", nlohmann::json());
