@@ -11,7 +11,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -471,9 +470,9 @@ DeckText read_prm(const std::string &path, std::istream &in)
     const auto hash = raw.find('#');
     // A tab separates words as a space does (editors insert either).
     std::string s = trimmed(hash == std::string::npos ? raw : raw.substr(0, hash));
-    for (const char *word : {"set", "subsection"})
-      if (s.size() > std::strlen(word) && s.compare(0, std::strlen(word), word) == 0 && s[std::strlen(word)] == '\t')
-        s[std::strlen(word)] = ' ';
+    for (const std::string_view word : {"set", "subsection"})
+      if (s.size() > word.size() && s.compare(0, word.size(), word) == 0 && s[word.size()] == '\t')
+        s[word.size()] = ' ';
     if (s.empty())
       continue;
     const std::string where = path + ":" + std::to_string(line);

@@ -124,6 +124,29 @@ void remove_regular_file(const std::string &path)
     ::unlink(path.c_str());
 }
 
+namespace
+{
+/// A pipe opened for writing once a process reads it.  A pipe nobody reads
+/// would block the open forever: its reader gets 5 s to open it (as a shell
+/// starts `cat pipe &` just before), then the write is refused.
+int open_read_pipe(const std::string &path)
+{
+  for (int tries = 0; tries < 100; ++tries)
+  {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+    if (fd >= 0)
+    {
+      ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+      return fd;
+    }
+    if (errno != ENXIO)
+      return -1;
+    ::usleep(50000);
+  }
+  output_failed(path + " (a pipe no process opened for reading within 5 s)", "cannot write", ENXIO);
+}
+} // namespace
+
 void write_named_output(const std::string &path, const std::string &content)
 {
   if (path == "-")
@@ -137,29 +160,10 @@ void write_named_output(const std::string &path, const std::string &content)
   if (kind == S_IFCHR || kind == S_IFIFO)
   {
     // A device or a pipe the user named (/dev/null, /dev/stdout, a FIFO):
-    // written through, never replaced.  A pipe nobody reads would block the
-    // open forever: its reader gets a few seconds to open it (as a shell
-    // starts `cat pipe &` just before), then the write is refused.
-    int fd = -1, open_error = 0;
-    for (int tries = 0; kind == S_IFIFO && tries < 100; ++tries)
-    {
-      fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
-      open_error = fd < 0 ? errno : 0;
-      if (open_error != ENXIO)
-        break;
-      ::usleep(50000);
-    }
-    if (open_error == ENXIO)
-      output_failed(path + " (a pipe no process opened for reading within 5 s)", "cannot write", ENXIO);
-    if (kind == S_IFIFO && fd >= 0)
-      ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
-    if (kind == S_IFCHR)
-    {
-      fd = ::open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
-      open_error = fd < 0 ? errno : 0;
-    }
+    // written through, never replaced.
+    const int fd = kind == S_IFIFO ? open_read_pipe(path) : ::open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0)
-      output_failed(path, "cannot write", open_error);
+      output_failed(path, "cannot write", errno);
     const int error = write_all(fd, content.data(), content.size());
     ::close(fd);
     if (error)
