@@ -60,6 +60,17 @@ Curve thinned(Curve c, std::size_t at_most = 1000);
 Curve column_curve(std::string title, std::string file, std::string x_column, std::string y_column, double x_scale = 1,
                    double y_scale = 1, CurveStyle style = CurveStyle::line);
 
+/// Where a figure's key goes: never over the data.  Below the frame, in as
+/// many columns as the picture's width holds (the picture grows by its
+/// rows, so the frame keeps its size); right of the frame (a narrow figure
+/// of few entries); or no key (a picture whose curves need no names).
+enum class KeyPlace
+{
+  below,
+  right,
+  none,
+};
+
 struct Figure
 {
   std::string name; ///< file stem: NAME.gp, NAME.svg (letters, digits, '_' and '-')
@@ -68,9 +79,9 @@ struct Figure
   bool log_x = false, log_y = false;
   bool equal_axes = false; ///< one unit as long on both axes (a mesh, a sample)
   bool x_margins = false;  ///< 5 % of the x range free at either end (markers at the ends drawn whole)
-  /// The y axis reaches at least this high (NaN: gnuplot's autoscale alone).
-  double y_top_at_least = std::numeric_limits<double>::quiet_NaN();
-  std::string key = "top left"; ///< gnuplot's key placement
+  /// The y axis's ends, in the plotted units (NaN: gnuplot's autoscale).
+  double y_low = std::numeric_limits<double>::quiet_NaN(), y_high = std::numeric_limits<double>::quiet_NaN();
+  KeyPlace key = KeyPlace::below;
   std::vector<Curve> curves;
   std::string caption; ///< one or two sentences under the picture in a report
 };

@@ -239,6 +239,72 @@ std::string run_gnuplot(const std::string &dir, const std::string &name)
   const std::string why = last_line(messages);
   return "gnuplot could not draw it" + (why.empty() ? std::string() : ": " + why) + " (messages in " + log + ")";
 }
+std::size_t characters(const std::string &utf8)
+{
+  return static_cast<std::size_t>(
+    std::count_if(utf8.begin(), utf8.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+// The key's layout below the frame.  gnuplot lets a key below run past the
+// picture's edges when its columns do not fit; demvv chooses the columns
+// itself from gnuplot's own width of an entry (8.4 px a character at 12 px
+// and 60 px of sample and gaps, measured from its key boxes for titles of
+// 10, 40 and 80 characters) and grows the picture by the rows, so that a
+// key of six titles neither leaves the picture nor squeezes the frame.
+// gnuplot centres the key on the frame, not on the picture, and the y
+// axis's labels move the frame up to 50 px right, so about 640 px are free:
+// a title of more than 69 characters does not fit in one column, and the
+// figure lint of the tests finds it.
+constexpr int picture_width = 760;
+constexpr int frame_height = 420; ///< the picture's height without a key below
+constexpr int key_row_height = 18;
+
+struct KeyLayout
+{
+  int columns = 1, rows = 0;
+};
+
+KeyLayout key_layout(const Figure &f)
+{
+  std::size_t entries = 0, widest = 0;
+  for (const Curve &c : f.curves)
+    if (!c.title.empty() && !(in_memory(c) && c.x.empty()))
+    {
+      ++entries;
+      widest = std::max(widest, characters(c.title));
+    }
+  if (entries == 0 || f.key != KeyPlace::below)
+    return {1, 0};
+  const double entry_width = 8.4 * static_cast<double>(widest) + 60;
+  const int fit = std::max(1, static_cast<int>((picture_width - 120) / entry_width));
+  const int columns = std::min(fit, static_cast<int>(entries));
+  return {columns, static_cast<int>((entries + columns - 1) / columns)};
+}
+
+int picture_height(const Figure &f)
+{
+  const KeyLayout k = key_layout(f);
+  return frame_height + (k.rows > 0 ? key_row_height * (k.rows + 1) : 40);
+}
+
+std::string key_clause(const Figure &f)
+{
+  switch (f.key)
+  {
+  case KeyPlace::none:
+    return "set key off";
+  case KeyPlace::right:
+    return "set key outside right top box opaque";
+  case KeyPlace::below:
+    break;
+  }
+  // gnuplot sets the x axis's label on the key's top edge; a bottom margin
+  // of the key's rows and four lines more lifts the frame and its label
+  // clear of the box.
+  const KeyLayout k = key_layout(f);
+  return "set key below box opaque maxcols " + std::to_string(k.columns) + "\nset bmargin " +
+         std::to_string(k.rows + 4);
+}
 } // namespace
 
 std::string gnuplot_script(const Figure &f)
@@ -247,7 +313,8 @@ std::string gnuplot_script(const Figure &f)
   o << "# demvv figure " << f.name << ": " << comment_text(f.title) << "\n"
     << "# Redraw with: gnuplot " << f.name << ".gp (in this folder; it writes " << f.name << ".svg)\n"
     << "reset\n"
-    << "set terminal svg size 760,460 noenhanced font 'Sans,12' background rgb 'white'\n"
+    << "set terminal svg size " << picture_width << "," << picture_height(f)
+    << " noenhanced font 'Sans,12' background rgb 'white'\n"
     << "set encoding utf8\n"
     << "set output " << quoted(f.name + ".svg") << "\n"
     << "set datafile separator ','\n"
@@ -255,7 +322,7 @@ std::string gnuplot_script(const Figure &f)
     << "set xlabel " << quoted(f.x_label) << "\n"
     << "set ylabel " << quoted(f.y_label) << "\n"
     << "set grid\n"
-    << "set key " << f.key << (f.key == "off" ? "" : " box opaque") << "\n";
+    << key_clause(f) << "\n";
   bool right = false;
   for (const Curve &c : f.curves)
     right = right || c.right_axis;
@@ -271,8 +338,9 @@ std::string gnuplot_script(const Figure &f)
     o << "set offsets graph 0.05, graph 0.05, 0, 0\n";
   if (f.equal_axes)
     o << "set size ratio -1\n";
-  if (std::isfinite(f.y_top_at_least))
-    o << "set yrange [*:" << number(f.y_top_at_least) << "<*]\n";
+  if (std::isfinite(f.y_low) || std::isfinite(f.y_high))
+    o << "set yrange [" << (std::isfinite(f.y_low) ? number(f.y_low) : "*") << ":"
+      << (std::isfinite(f.y_high) ? number(f.y_high) : "*") << "]\n";
   o << "plot ";
   int block = 0, colour = 0;
   bool first = true;

@@ -258,7 +258,7 @@ void mesh_figure(const std::string &dir, std::vector<Figure> &out)
   f.title = "Finite-element mesh (cell edges)";
   f.x_label = "r or x [mm]";
   f.y_label = "z [mm]";
-  f.key = "off";
+  f.key = KeyPlace::none;
   f.equal_axes = true;
   f.curves.push_back(column_curve("mesh", "../mesh.csv", "1", "2", 1e3, 1e3));
   out.push_back(std::move(f));
@@ -323,7 +323,7 @@ Figure section_picture(std::string name, std::string title, std::string caption)
 {
   Figure f = make_figure(std::move(name), std::move(title), "x [mm]", "z [mm]", {}, std::move(caption));
   f.equal_axes = true;
-  f.key = "outside right top";
+  f.key = KeyPlace::right;
   return f;
 }
 
@@ -415,7 +415,6 @@ void prepare_figures(const nlohmann::json &summary, std::vector<Figure> &out)
                          "Stage 4 of the preparation: every radius scaled, the packing settled, its mean stress "
                          "measured (secant steps towards half the target).");
   f.log_y = true;
-  f.key = "top right";
   f.curves.front().x_scale = 100;
   const nlohmann::json target = summary.value("stress_target_pa", nlohmann::json());
   if (target.is_number())
@@ -446,7 +445,6 @@ void mms_figures(const std::string &dir, const nlohmann::json &summary, std::vec
   f.title = std::string("Convergence to the manufactured solution in ") + (in_space ? "space" : "time");
   f.x_label = in_space ? "cell size [m]" : "time step [s]";
   f.y_label = "relative error [-]";
-  f.key = "top left";
   const nlohmann::json expected = summary.value("expected_orders", nlohmann::json::object());
   for (auto it = expected.begin(); it != expected.end(); ++it)
     if (t.has(it.key()))

@@ -47,7 +47,6 @@ Figure gci_figure(const std::string &name, const std::string &quantity, const Gc
   f.title = "Grid convergence index: " + quantity;
   f.x_label = h_label;
   f.y_label = value_label;
-  f.key = "below";
   if (levels.h.empty() || levels.h.size() != levels.value.size())
     return f;
   const double f1 = levels.value.front();
@@ -80,7 +79,6 @@ Figure parameter_study_figure(const StudyAxes &axes, const std::vector<StudySeri
 {
   Figure f = make_figure(axes.name, axes.title, axes.x_label, axes.y_label, {});
   f.log_x = axes.log_x;
-  f.key = "below";
   f.x_margins = !axes.log_x; // a log axis already reaches whole decades
   int colour = 0;
   for (const StudySeries &s : series)

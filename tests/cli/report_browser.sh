@@ -9,7 +9,9 @@
 # message at all (the page writes none, so any is an error), every check
 # section drawn with at least one figure, every figure rendered at a
 # non-zero size (the page's own script marks each one), no figure missing,
-# a headline by V&V category with a banner (mode, date, commit, host, CPU),
+# figures that cannot mislead (figure_lint.py: keys off the data and inside
+# the picture, captions naming only what is drawn), a headline by V&V
+# category with a banner (mode, date, commit, host, CPU),
 # a scope, a sign-off block, every check folded and naming its case decks
 # with their standard FNV-1a 64, and a screenshot that is not blank (pixels
 # other than the background); then V25's own page, with its validation band
@@ -102,6 +104,10 @@ for path, shown in hashes:
     if "%016x" % h != shown:
         print("FAIL: %s's hash %s is not the FNV-1a 64 of its text (%016x)" % (path, shown, h)); sys.exit(1)
 EOF
+# Figures that cannot mislead: each key inside its picture, off the data
+# and the labels, each caption naming only what its figure draws
+# (figure_lint.py reads the figures the browser was given).
+python3 "$(dirname "$0")/figure_lint.py" "$work/dom.html" || fail=1
 # Every check section holds a rendered figure.
 python3 - "$work/dom.html" <<'EOF' || fail=1
 import re, sys
@@ -178,5 +184,6 @@ for title in ("Peak stress against the temperature-compensated rate",
         sys.exit(1)
 print("V25: the validation band and the budget figures drawn")
 EOF
+python3 "$(dirname "$0")/figure_lint.py" "$work/validation_dom.html" || fail=1
 [ "$fail" -eq 0 ] && echo "report.html: $sections checks, $rendered figures rendered, no console message"
 exit "$fail"

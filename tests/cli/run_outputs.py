@@ -1,7 +1,8 @@
 """Every file a run writes reads back, and demvv draws its figures from them:
 each JSON parses (strict JSON: no NaN or Infinity), each CSV has its header
 and whole rows of numbers (nan where the run has no value), and
-each ParaView file opens in VTK's own XML readers (python3-vtk9) with the
+each figure passes figure_lint.py (its key inside the picture, off the data
+and the labels), each ParaView file opens in VTK's own XML readers (python3-vtk9) with the
 point counts and arrays demvv says it wrote: one point per ball (summary.json,
 sample.json), the arrays paraview.h documents with one tuple per point or
 line, the ids 0..N-1, the radii of the sample, and as many broken bonds at
@@ -20,6 +21,8 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figure_lint  # noqa: E402  (beside this file)
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkIOXML import (vtkXMLPolyDataReader, vtkXMLPUnstructuredGridReader,
                                  vtkXMLUnstructuredGridReader)
@@ -262,6 +265,9 @@ def check_files(run_dir):
                 read_vtk(vtkXMLUnstructuredGridReader, path)
             elif ext == ".vtp":
                 read_vtk(vtkXMLPolyDataReader, path)
+            elif ext == ".svg":
+                for finding in figure_lint.findings(path, open(path, encoding="utf-8").read(), ""):
+                    fail(finding)
 
 
 os.makedirs(work, exist_ok=True)

@@ -58,7 +58,6 @@ CheckOutcome check_energy_audit(const CheckContext &ctx)
     "energy_ledger", "Energy audit of a bonded compression", "axial strain [%]", "energy [J]", std::move(curves),
     "The work the platens supply (dashed) against what the packing holds and has dissipated (their sum, solid); "
     "the metric is the largest gap between the two against the final work."));
-  out.figures.back().y_top_at_least = 1.6 * max_abs(work); // room for the key above the curves
   out.notes.push_back("energy audit on " + std::to_string(r.summary["sample"]["particles"].get<long>()) +
                       " balls; final boundary work " + num(work.back()) + " J, residual " + num(residual.back()) +
                       " J");
@@ -96,7 +95,6 @@ CheckOutcome check_chain_wave(const CheckContext &ctx)
     "The discrete chain spreads the step into an oscillating front whose half-height point trails the long-wave "
     "step by a lag growing like n^(1/3); the check times the front at both balls, so the common lag cancels in "
     "the speed between them."));
-  out.figures.back().key = "bottom right";
   const double speed = (stations[1] - stations[0]) * 2 * p.radius[0] / (arrival[1] - arrival[0]);
   // The discrete chain disperses a step into an Airy-type front whose
   // half-amplitude point moves at c0 with a lag growing like n^(1/3); timing

@@ -151,7 +151,6 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
                    curve("closed form: K_n u up to phi_n, then 0", extension, closed, CurveStyle::dashed)},
                   "The bond carries K_n u until the force reaches its normal strength phi_n, then both forces are zero "
                   "(thesis §3.4.2); the break falls within one step's extension (v dt) of phi_n / K_n."));
-    out.figures.back().y_top_at_least = 1.5 * phi; // room for the key above the curves
     // Positions carry round-off of ~1e-16 x 2R; K times that is ~1e-12 N.
     out.metrics.push_back(bound("tension: max |F_n + K_n u| / phi_n before the break", law_error, 1e-9, false,
                                 ToleranceClass::A, "secant law, round-off in positions only"));
@@ -196,7 +195,6 @@ CheckOutcome check_bond_failure(const CheckContext &ctx)
        curve("closed form: K_s u_s up to phi_s, then mu F_n", displacement, closed, CurveStyle::dashed)},
       "The bond carries K_s u_s until the shear force reaches its shear strength phi_s; once it has broken the "
       "contact slides, its shear force held at the Coulomb limit mu F_n of the preload."));
-    out.figures.back().key = "bottom right";
     // The driven ball moves on a straight line, so the contact normal turns
     // by u/d and the shear force lags the straight-line displacement by a
     // relative (u/d)^2 / 2 (< 1e-6 here); 1e-5 allows for it.
@@ -264,7 +262,6 @@ CheckOutcome check_coulomb_slip(const CheckContext &ctx)
        curve("closed form: min(K_s u_s, mu F_n)", displacement, closed, CurveStyle::dashed)},
       "The contact sticks, carrying K_s u_s, until the shear force reaches the Coulomb limit mu F_n, then slides "
       "with its shear force held at that limit; mu F_n falls slightly as the ball slides along a straight line."));
-    out.figures.back().key = "bottom right";
     const double turn = onset_expected / d;
     out.metrics.push_back(bound("slip: max |F_s - K_s u_s| / (mu F_n) while sticking", stick_error,
                                 std::max(1e-5, turn * turn), false, ToleranceClass::A,
@@ -331,7 +328,6 @@ CheckOutcome check_free_flight(const CheckContext &ctx)
      curve("closed form: x = v_x t, z = v_z t - g t^2 / 2", x_closed, z_closed, CurveStyle::dashed)},
     "Under gravity alone the path is a parabola, which the integrator follows to round-off (the metric gives "
     "the largest distance from it)."));
-  out.figures.back().key = "bottom center";
   const double steps = static_cast<double>(r.sim->steps());
   const double travel = std::hypot(vx0, vz0) * t.back();
   // Each step rounds x and v once: the error grows like n eps |x| for n

@@ -283,7 +283,6 @@ CheckOutcome check_affine_moduli(const CheckContext & /*ctx*/)
                   "Poisson's ratio depends on the stiffness ratio alone (1/4 for frictionless, 0 at k_s = k_n).");
     f.curves[1].point_type = 6; // an open circle around the icosahedron's filled one
     f.x_margins = true;
-    f.key = "top right";
     out.figures.push_back(std::move(f));
   }
   // Same-shape Burger's contacts: every spring and dashpot of the solid's

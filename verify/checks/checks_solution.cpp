@@ -423,7 +423,6 @@ CheckOutcome check_time_step_safety(const CheckContext &ctx)
                            std::to_string(step_study_seeds) +
                            " at every level: the peak stress and the stress at a fixed strain early in the loading, "
                            "each seed and the mean over seeds.");
-  f.key = "center right";
   out.figures.push_back(f);
   return out;
 }

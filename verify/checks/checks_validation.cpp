@@ -226,7 +226,6 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
     "the mean meets the target within its standard error. Agreement here is by construction."));
   add_band(out.figures.back(), "the law's assumed 10 %", *low, *high, target - band, target + band);
   out.figures.back().x_margins = true;
-  out.figures.back().key = "bottom right";
   out.notes.push_back(
     "bond strength (normal = shear) fitted at 10 C, 0.1 1/s: " + num(value) + " N +- " +
     num(number_at(p, "standard_error")) + " N (seeds alone: +- " + num(number_at(p, "standard_error_seeds")) +
@@ -423,7 +422,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
     Curve points = curve("validation, " + labels[g], at, y[g], CurveStyle::points);
     points.y_error = bar[g];
     curves.push_back(points);
-    Curve band = curve("law +- 2 u_val (passes inside), " + labels[g], at, law_at[g], CurveStyle::points);
+    Curve band = curve("law +- 2 u_val, " + labels[g], at, law_at[g], CurveStyle::points);
     band.y_error = two_u_val[g];
     band.point_type = 1;
     curves.push_back(band);
@@ -438,7 +437,6 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                 "confidence intervals of the seed-ensemble means; bars on the law at each held-out "
                 "condition: +- 2 u_val (ASME V&V 20), the band inside which a prediction passes; the "
                 "viscosities-alone configuration drawn 12 % to the right of its condition.");
-  f.key = "below";
   f.log_x = true;
   f.log_y = true;
   out.figures.push_back(f);
@@ -453,7 +451,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                          "standard uncertainty [% of S]", bars,
                          "ASME V&V 20: u_val = sqrt(u_num^2 + u_input^2 + u_D^2 + u_S^2); each part at each "
                          "comparison of the metrics table, in per cent of the prediction S.");
-  b.key = "outside right";
+  b.key = KeyPlace::right;
   out.figures.push_back(b);
   return out;
 }

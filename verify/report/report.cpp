@@ -25,6 +25,8 @@ std::string reference_text(const ConvergenceTable &t)
   case ConvergenceTable::Reference::theory:
     break;
   }
+  if (!(t.expected_order > 0))
+    return "no order claimed";
   return "theoretical order " + report_number(t.expected_order);
 }
 

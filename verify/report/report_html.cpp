@@ -74,13 +74,17 @@ std::string lower(std::string_view s)
 /// How far inside its tolerance a metric is: value / tolerance (tolerance /
 /// value for a lower bound); below 1 passes.  Shown on a log axis, so an
 /// exact zero is drawn at 1e-16 and an unbounded ratio at 1e6.
+// A metric's value over its tolerance (its tolerance over its value for a
+// lower bound): below 1 it passes.  An exact zero under an upper bound
+// stays 0 (a count that must match, tolerance 0 included); what no number
+// can say (NaN, a lower bound of 0) is drawn far above the line.
 double margin(const Metric &m)
 {
   const double v = std::abs(m.value), t = std::abs(m.tolerance);
-  double r = m.at_least ? t / v : v / t;
-  if (!std::isfinite(r))
-    r = std::isnan(m.value) ? 1e6 : (m.at_least ? 1e6 : 1e-16);
-  return std::clamp(r, 1e-16, 1e6);
+  if (!m.at_least && v == 0)
+    return 0;
+  const double r = m.at_least ? t / v : v / t;
+  return std::isfinite(r) ? std::min(r, 1e6) : 1e6;
 }
 
 const char *figure_check_script = R"(
@@ -154,7 +158,6 @@ std::vector<Figure> check_figures(const CheckRecord &r)
     if (t.reference == Reference::roundoff)
     {
       add_order_study(f, "error (round-off, no order)", h, e, 0);
-      f.key = "below";
       const auto [low, high] = std::minmax_element(h.begin(), h.end());
       if (low != h.end())
         f.curves.push_back(curve("round-off bound of the check", {*low, *high}, {t.roundoff_bound, t.roundoff_bound},
@@ -169,12 +172,16 @@ std::vector<Figure> check_figures(const CheckRecord &r)
       add_order_study(f, "observed (last order " + report_number(t.last_order()) + ")", h, e, t.expected_order,
                       theory ? "theory"
                              : (t.reference == Reference::fitted ? "fitted to these points" : "the least accepted"));
-      f.caption = "Errors of the study on log-log axes; the dashed line is the " + reference_text(t) +
-                  ", drawn through the finest level." +
-                  (theory ? ""
-                   : t.reference == Reference::fitted
-                     ? " It is fitted to the points it passes, so it shows the fit, not a prediction."
-                     : " Errors that fall faster than the line pass: it is a bound, not a prediction.");
+      if (!(t.expected_order > 0))
+        f.caption = "Errors of the study on log-log axes; no order is claimed, so no reference line is drawn: the "
+                    "check holds the errors themselves to its tolerance.";
+      else
+        f.caption = "Errors of the study on log-log axes; the dashed line is the " + reference_text(t) +
+                    ", drawn through the finest level." +
+                    (theory ? ""
+                     : t.reference == Reference::fitted
+                       ? " It is fitted to the points it passes, so it shows the fit, not a prediction."
+                       : " Errors that fall faster than the line pass: it is a bound, not a prediction.");
     }
     out.push_back(std::move(f));
   }
@@ -191,19 +198,38 @@ std::vector<Figure> check_figures(const CheckRecord &r)
     f.x_label = "metric (numbered as in the table)";
     f.y_label = "value / tolerance (tolerance / value for a lower bound)";
     f.log_y = true;
-    f.y_top_at_least = 10;
-    f.key = "top right";
-    std::vector<double> n, ratio;
+    // Exact zeros (a closed form met to the last bit) have no place on a
+    // log axis: they are drawn apart, as open circles on a floor a hundred
+    // times below the least non-zero margin, so that they neither vanish
+    // nor stretch the axis over sixteen decades.
+    std::vector<double> n, ratio, zero_n;
+    double least = 1, most = 1;
     for (std::size_t k = 0; k < r.outcome.metrics.size(); ++k)
     {
-      n.push_back(static_cast<double>(k + 1));
-      ratio.push_back(margin(r.outcome.metrics[k]));
+      const double m = margin(r.outcome.metrics[k]);
+      (m > 0 ? n : zero_n).push_back(static_cast<double>(k + 1));
+      if (m > 0)
+        ratio.push_back(m);
+      least = m > 0 ? std::min(least, m) : least;
+      most = std::max(most, m);
     }
-    const double right = static_cast<double>(n.size()) + 0.5;
+    const double floor = least / 100;
+    const double right = static_cast<double>(r.outcome.metrics.size()) + 0.5;
     f.curves.push_back(curve("metric", n, ratio, CurveStyle::points));
     f.curves.push_back(curve("tolerance (pass below)", {0.5, right}, {1.0, 1.0}, CurveStyle::dashed));
-    f.caption = "How far inside its tolerance each metric lies: a point below the dashed line passes. An exact "
-                "zero is drawn at 1e-16.";
+    if (!zero_n.empty())
+    {
+      f.curves.push_back(curve("exact zero (drawn at the floor)", zero_n, std::vector<double>(zero_n.size(), floor),
+                               CurveStyle::points));
+      f.curves.back().point_type = 6;
+    }
+    f.y_low = floor / 3;
+    f.y_high = 10 * most;
+    f.x_margins = true;
+    f.caption = "How far inside its tolerance each metric lies: a point below the dashed line passes." +
+                std::string(zero_n.empty() ? ""
+                                           : " Open circles are exact zeros, drawn on a floor a hundred times below "
+                                             "the least non-zero ratio (a log axis has no zero).");
     out.push_back(std::move(f));
   }
   return out;
