@@ -336,6 +336,9 @@ std::string gnuplot_script(const Figure &f)
     o << "set format " << (f.log_x ? "x" : "") << (f.log_y ? "y" : "") << " '%g'\n";
   if (f.x_margins)
     o << "set offsets graph 0.05, graph 0.05, 0, 0\n";
+  else if (std::all_of(f.curves.begin(), f.curves.end(),
+                       [](const Curve &c) { return c.style == CurveStyle::line || c.style == CurveStyle::dashed; }))
+    o << "set autoscale xfix\n"; // histories end where their data end, not at the next tick
   if (f.equal_axes)
     o << "set size ratio -1\n";
   if (std::isfinite(f.y_low) || std::isfinite(f.y_high))

@@ -152,8 +152,8 @@ void uniaxial_figures(const std::string &dir, std::vector<Figure> &out)
   add_figure(out, s, {"energy", "Energy ledger", strain, "energy [J]"}, "axial_strain", 100, energy_lines);
   add_figure(out, s, {"energy_residual", "Energy balance error", strain, "residual [J]", "boundary work [J]"},
              "axial_strain", 100, residual_lines);
-  add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [s]"}, "time_s", 1,
-             {{"time step", "time_step_s"}});
+  add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [µs]"}, "time_s", 1,
+             {{"time step", "time_step_s", 1e6}});
   add_figure(out, s, {"quasi_static", "Quasi-static indicators", strain, "ratio [-]"}, "axial_strain", 100,
              {{"unbalanced force ratio", "unbalanced_force_ratio"}, {"inertial number", "inertial_number"}}, true);
 }
@@ -164,8 +164,8 @@ void scene_figures(const std::string &dir, std::vector<Figure> &out)
   add_figure(out, s, {"energy", "Energy ledger", "time [s]", "energy [J]"}, "time_s", 1, energy_lines);
   add_figure(out, s, {"energy_residual", "Energy balance error", "time [s]", "residual [J]", "boundary work [J]"},
              "time_s", 1, residual_lines);
-  add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [s]"}, "time_s", 1,
-             {{"time step", "time_step_s"}});
+  add_figure(out, s, {"time_step", "Time step", "time [s]", "time step [µs]"}, "time_s", 1,
+             {{"time step", "time_step_s", 1e6}});
   std::vector<Line> counts = {{"contacts", "contacts"}, {"bonds intact", "bonds_intact"}};
   for (const Line &l : broken_by_mode)
     counts.push_back({"bonds broken in " + l.title, l.column, 1, CurveStyle::dashed});
