@@ -146,3 +146,42 @@ TEST_CASE("a convergence figure says what its dashed line is", "[verify][report]
   CHECK(titles(figures[2]).find("theory") == std::string::npos);
   CHECK(demvv::reference_text(record.outcome.tables[2]) == "no order: exact up to round-off, bound 1e-09");
 }
+
+TEST_CASE("a check of many convergence studies shows them as one table, figures folded", "[verify][report]")
+{
+  // Five studies (V21 has two dozen): a table of them, then their figures
+  // under one fold; two studies stay figures in the open.
+  for (const std::size_t studies : {std::size_t{5}, std::size_t{2}})
+  {
+    demvv::CheckRecord record;
+    record.check = demvv::find_check("V21");
+    REQUIRE(record.check != nullptr);
+    for (std::size_t k = 0; k < studies; ++k)
+    {
+      demvv::ConvergenceTable t;
+      t.title = "study " + std::to_string(k);
+      t.expected_order = 2;
+      for (double h : {0.4, 0.2, 0.1})
+        t.add(h, h * h);
+      record.outcome.tables.push_back(t);
+    }
+    const std::vector<std::vector<demvv::Figure>> figures = {demvv::check_figures(record)};
+    const std::string page = demvv::report_html({record}, figures, nlohmann::json::object(), {});
+    const std::size_t table = page.find("<table class=\"family\">"), fold = page.find("<details class=\"family\">");
+    if (studies == 5)
+    {
+      REQUIRE(table != std::string::npos);
+      REQUIRE(fold != std::string::npos);
+      CHECK(table < fold);
+      CHECK(page.find("<td>study 4</td><td>3</td><td>0.01</td><td>2</td>") != std::string::npos);
+      const std::size_t last = page.find("v21_convergence_5", fold); // the fold holds all five
+      REQUIRE(last != std::string::npos);
+      CHECK(page.find("</details>", fold) > last);
+    }
+    else
+    {
+      CHECK(table == std::string::npos);
+      CHECK(fold == std::string::npos);
+    }
+  }
+}

@@ -130,6 +130,29 @@ dl.facts dd { margin-left: 10em; }
 pre { background: #f7f7f7; padding: 0.5em; overflow-x: auto; font-size: 0.8em; }
 )";
 
+/// Convergence studies a check shows one by one; more are a family.
+constexpr std::size_t family_unfolded = 4;
+
+std::string convergence_family_table(const std::vector<ConvergenceTable> &tables)
+{
+  std::ostringstream o;
+  o << "<table class=\"family\">\n<tr><th>study</th><th>levels</th><th>finest error</th><th>last observed "
+       "order</th><th>reference</th></tr>\n";
+  for (const ConvergenceTable &t : tables)
+    o << "<tr><td>" << html_escaped(t.title) << "</td><td>" << t.rows.size() << "</td><td>"
+      << (t.rows.empty()
+            ? std::string("-")
+            : report_number(std::min_element(t.rows.begin(), t.rows.end(),
+                                             [](const ConvergenceRow &a, const ConvergenceRow &b) { return a.h < b.h; })
+                              ->error))
+      << "</td><td>"
+      << (t.reference == ConvergenceTable::Reference::roundoff ? std::string("(round-off, none claimed)")
+                                                               : report_number(t.last_order()))
+      << "</td><td>" << html_escaped(reference_text(t)) << "</td></tr>\n";
+  o << "</table>\n";
+  return o.str();
+}
+
 std::string verdict(bool pass)
 {
   return pass ? "<span class=\"pass\">PASS</span>" : "<span class=\"fail\">FAIL</span>";
@@ -255,8 +278,16 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
          << "<dt>Run time</dt><dd>" << report_number(r.seconds) << " s</dd>\n</dl>\n";
     if (!r.error.empty())
       body << "<p class=\"fail\">The check stopped: " << html_escaped(r.error) << "</p>\n";
-    for (const Figure &f : figures[n])
+    // A long family of convergence studies (V21 has two dozen) is one table
+    // of its studies, with their figures folded under it.
+    const std::size_t studies = r.outcome.tables.size();
+    const bool family = studies > family_unfolded;
+    if (family)
+      body << convergence_family_table(r.outcome.tables) << "<details class=\"family\">\n<summary>The " << studies
+           << " convergence figures</summary>\n";
+    for (std::size_t k = 0; k < figures[n].size(); ++k)
     {
+      const Figure &f = figures[n][k];
       const auto it = drawn.find(f.name);
       body << "<figure>\n";
       if (it != drawn.end() && it->second.drawn())
@@ -270,6 +301,8 @@ std::string report_html(const std::vector<CheckRecord> &records, const std::vect
       }
       body << "<figcaption>" << html_escaped(f.title) << (f.caption.empty() ? "" : ". ") << html_escaped(f.caption)
            << "</figcaption>\n</figure>\n";
+      if (family && k + 1 == studies)
+        body << "</details>\n";
     }
     body << "<table>\n<tr><th>#</th><th>metric</th><th>class</th><th>value</th><th>tolerance</th><th>verdict</th>"
             "<th>why this tolerance</th></tr>\n";
