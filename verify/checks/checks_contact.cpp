@@ -38,9 +38,11 @@ Pulse pulse(const std::vector<double> &t, const std::vector<double> &force)
 }
 
 /// The measured force of an impact beside the closed-form half sine
-/// F_max sin(omega (t - t_0)), t_0 putting its centre on the measured pulse's.
-Figure impact_figure(const std::string &label, const std::vector<double> &t, const std::vector<double> &force,
-                     const Pulse &measured, double dt, double kn, double reduced_mass, double v_in)
+/// F_max sin(omega (t - t_0)), t_0 putting its centre on the measured pulse's,
+/// and under it their difference (the two curves coincide to the eye).
+std::vector<Figure> impact_figures(const std::string &label, const std::vector<double> &t,
+                                   const std::vector<double> &force, const Pulse &measured, double dt, double kn,
+                                   double reduced_mass, double v_in)
 {
   const double tc = dem::LinearLaw::collision_time(kn, reduced_mass);
   const double omega = dem::LinearLaw::natural_frequency(kn, reduced_mass);
@@ -52,9 +54,22 @@ Figure impact_figure(const std::string &label, const std::vector<double> &t, con
   std::string name = label;
   for (char &c : name)
     c = c == '-' ? '_' : c;
-  return make_figure(name, label + " impact: normal force", "time [s]", "normal force [N]",
-                     {curve("demvv", t, force), curve("closed form (half sine)", t, closed, CurveStyle::dashed)},
-                     "The closed form is placed with its centre on the measured pulse's centre.");
+  std::vector<double> difference;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    difference.push_back(force[k] - closed[k]);
+  Figure residual = make_figure(name + "_residual", label + " impact: demvv minus the closed form", "time [s]",
+                                "force difference [N]", {curve("demvv - closed form", t, difference)},
+                                "Inside the pulse the difference is the scheme's amplitude and phase error, "
+                                "O((omega dt)^2) of F_max; at its two edges, where the force switches on and off "
+                                "within a step, it is bounded by one step's worth of the sine's slope (F_max omega "
+                                "dt, the dashed band).");
+  add_band(residual, "+- F_max omega dt (one step's slope)", t.front(), t.back(), -f_max * omega * dt,
+           f_max * omega * dt);
+  return {make_figure(name, label + " impact: normal force", "time [s]", "normal force [N]",
+                      {curve("demvv", t, force), curve("closed form (half sine)", t, closed, CurveStyle::dashed)},
+                      "The closed form is placed with its centre on the measured pulse's centre; their difference "
+                      "is the next figure."),
+          residual};
 }
 
 /// Duration, peak force and restitution of one impact (item 1).
@@ -81,7 +96,8 @@ void impact_metrics(CheckOutcome &out, const std::string &label, const std::vect
   out.metrics.push_back(relative_error(label + ": coefficient of restitution, relative error", v_out / v_in,
                                        dem::LinearLaw::restitution(), omega_dt * omega_dt, ToleranceClass::B,
                                        "spring energy at the switch-off step, (omega dt)^2"));
-  out.figures.push_back(impact_figure(label, t, force, measured, dt, kn, reduced_mass, v_in));
+  for (Figure &f : impact_figures(label, t, force, measured, dt, kn, reduced_mass, v_in))
+    out.figures.push_back(std::move(f));
 }
 } // namespace
 
