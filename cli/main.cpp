@@ -1,7 +1,8 @@
 // demvv: the command-line entry point.
 //
 //   demvv run DECK [--out DIR [--replace]] [--set SECTION/KEY=VALUE]... [--threads N] [--quiet] [--resume RUN_DIR]
-//   demvv sweep BASE_DECK --vary SECTION/KEY[+KEY...]=v1,v2,... [--vary ...] [--seeds N] --out DIR [--replace] [--threads N] [--quiet]
+//   demvv sweep BASE_DECK --vary SECTION/KEY[+KEY...]=v1,v2,... [--vary ...] [--seeds N [--first-seed K]]
+//               --out DIR [--replace] [--threads N] [--quiet]
 //   demvv time-step BASE_DECK [--safety s1,s2,s3,...] [--seeds N] [--set SECTION/KEY=VALUE]... --out DIR
 //   demvv calibrate BASE_DECK --fit KEY[+KEY...]=START --target QUANTITY=VALUE[,U] [--at KEY=VALUE] [--seeds N] --out DIR
 //   demvv defaults KIND
@@ -155,12 +156,20 @@ int main(int argc, char **argv)
   sweep_cmd->add_option("--vary", sweep.vary,
                         "SECTION/KEY=v1,v2,...: the values of one deck entry (repeatable; members are the "
                         "product); SECTION/KEY+SECTION/KEY=v1,...: entries tied to one value each");
+  auto *sweep_seeds =
+    sweep_cmd
+      ->add_option("--seeds", sweep.seeds,
+                   "Run each combination with seeds K..K+N-1 (bond strengths and, for a sample from a prepare "
+                   "deck, the packing); default: the deck's own seeds")
+      ->check(whole_number)
+      ->check(CLI::Range(1, 100000));
   sweep_cmd
-    ->add_option("--seeds", sweep.seeds,
-                 "Run each combination with seeds 1..N (bond strengths and, for a sample from a prepare "
-                 "deck, the packing); default: the deck's own seeds")
+    ->add_option("--first-seed", sweep.first_seed,
+                 "K, the first of the --seeds (default 1; another K: another seed set, e.g. packings a "
+                 "calibration never saw)")
+    ->needs(sweep_seeds)
     ->check(whole_number)
-    ->check(CLI::Range(1, 100000));
+    ->check(CLI::Range(1, 1000000));
   sweep_cmd->add_option("--out", sweep.settings.out_dir, "Sweep directory: new, empty, or this sweep's (resumed)")
     ->required()
     ->check(directory_name);

@@ -651,8 +651,9 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
                             "file demvv wrote, or --replace to start the sweep over");
   }
   if (before != labels)
-    throw DeckError(named + " holds another sweep (other members): expected the same --vary and --seeds to resume "
-                            "it, or --replace to start it over");
+    throw DeckError(
+      named + " holds another sweep (other members): expected the same --vary, --seeds and --first-seed to resume "
+              "it, or --replace to start it over");
   // A link planted in a shared sweep directory would send the members'
   // runs, and the removal of a member's folder before it runs again,
   // elsewhere.
@@ -814,6 +815,7 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &o)
                            {"base_deck_hash", fnv1a_hex(base.resolved())},
                            {"kind", base.kind()},
                            {"seeds", plan.seeds},
+                           {"first_seed", plan.first_seed},
                            {"seed_keys", "bonds/seed; sample/seed of a prepare deck; the sample of a prepare deck "
                                          "named by sample/file prepared with sample/seed and bonds/seed"},
                            {"ranks", mpi.ranks},
@@ -927,7 +929,7 @@ int command_sweep(const SweepOptions &o)
   const Deck base = Deck::from_file(deck_kinds(), o.base_deck);
   if (o.vary.empty() && o.seeds == 0)
     throw DeckError("sweep of " + o.base_deck + ": nothing varies: expected --vary SECTION/KEY=v1,v2,... or --seeds N");
-  SweepPlan plan{o.base_deck, {}, {{}}, o.seeds, 1};
+  SweepPlan plan{o.base_deck, {}, {{}}, o.seeds, o.first_seed};
   for (const std::string &arg : o.vary)
   {
     const Varied v = parse_vary(arg, base);

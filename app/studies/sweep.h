@@ -1,7 +1,7 @@
 // demvv sweep: one base deck run over the Cartesian product of varied
 // entries and seeds, each member an ordinary run directory.
 //
-//   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N]
+//   demvv sweep BASE_DECK --vary SECTION/KEY=v1,v2,... [--vary ...] [--seeds N [--first-seed K]]
 //               --out DIR [--replace] [--threads N] [--quiet]
 //
 // Members are numbered in the order of the product, the first --vary
@@ -86,6 +86,7 @@ struct SweepOptions
   std::string base_deck;
   std::vector<std::string> vary; ///< "SECTION/KEY[+SECTION/KEY...]=v1,v2,..."
   int seeds = 0;                 ///< 0: the deck's own seeds
+  int first_seed = 1;            ///< the seeds are first_seed ... first_seed + seeds - 1
   SweepSettings settings;
 };
 

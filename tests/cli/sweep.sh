@@ -207,6 +207,21 @@ for s in 1 2; do
     fail "seed $s: its sample '$sample' was not prepared with that seed"
 done
 [ "$(cut -d, -f4 "$work/p/sweep.csv" | sort -u | wc -l)" -eq 4 ] || fail "two seeds gave one peak stress: $(cat "$work/p/sweep.csv")"
+# Another seed set (--first-seed 2: seeds 2 and 3): seed 2's member is the
+# one above to the last digit, seed 3's sample is prepared with seed 3, and
+# the first sweep's folder refuses it as another sweep.
+"$demvv" sweep "$work/packed.prm" --seeds 2 --first-seed 2 --out "$work/p2" --threads 2 --quiet 2>"$work/err" ||
+  fail "the sweep of seeds 2-3 failed: $(cat "$work/err")"
+[ "$(sed -n 's/^1,2,completed,//p' "$work/p/sweep.csv" | cut -d, -f1)" = \
+  "$(sed -n 's/^0,2,completed,//p' "$work/p2/sweep.csv" | cut -d, -f1)" ] ||
+  fail "seed 2 gave another peak in the second seed set: $(cat "$work/p/sweep.csv" "$work/p2/sweep.csv")"
+sample=$(sed -n 's/^ *set file *= *//p' "$work/p2/members/"*"_s3/deck.prm")
+python3 -c "import json, sys; sys.exit(json.load(open(sys.argv[1]))['seed'] != 3)" "$sample" ||
+  fail "seed 3: its sample '$sample' was not prepared with that seed"
+if "$demvv" sweep "$work/packed.prm" --seeds 2 --first-seed 2 --out "$work/p" --quiet 2>"$work/err"; then
+  fail "a sweep of seeds 2-3 resumed the folder of seeds 1-2"
+fi
+grep -q "another sweep" "$work/err" || fail "another seed set in a sweep's folder: $(cat "$work/err")"
 
 # A sweep of a kind without a peak stress (a Burger's chain) draws no
 # figure of the quantities its members do not have, and says nothing
