@@ -239,6 +239,7 @@ std::string run_gnuplot(const std::string &dir, const std::string &name)
   const std::string why = last_line(messages);
   return "gnuplot could not draw it" + (why.empty() ? std::string() : ": " + why) + " (messages in " + log + ")";
 }
+
 std::size_t characters(const std::string &utf8)
 {
   return static_cast<std::size_t>(

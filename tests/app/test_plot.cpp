@@ -50,6 +50,31 @@ TEST_CASE("a figure script reads named columns with their display scale and a ri
   CHECK(contains(s, "title 'it''s broken'")); // a quote inside a title is doubled
 }
 
+TEST_CASE("a key goes below the frame in as many columns as fit, the picture growing by its rows", "[plot]")
+{
+  // gnuplot's entry is 8.4 px a character and 60 px more; 640 px are free.
+  const auto figure = [](std::size_t entries, std::size_t title_length)
+  {
+    demvv::Figure f;
+    f.name = "keys";
+    for (std::size_t k = 0; k < entries; ++k)
+      f.curves.push_back(demvv::curve(std::string(title_length, 'a' + char(k)), {0, 1}, {0, 1}));
+    return f;
+  };
+  const std::string two_short = demvv::gnuplot_script(figure(2, 10)); // 144 px each: both in one row
+  CHECK(contains(two_short, "set key below box opaque maxcols 2\nset bmargin 5"));
+  CHECK(contains(two_short, "svg size 760,456 "));
+  const std::string six_long = demvv::gnuplot_script(figure(6, 60)); // 564 px: one column, six rows
+  CHECK(contains(six_long, "maxcols 1\nset bmargin 10"));
+  CHECK(contains(six_long, "svg size 760,546 "));
+  demvv::Figure none = figure(2, 10);
+  none.key = demvv::KeyPlace::none;
+  CHECK(contains(demvv::gnuplot_script(none), "set key off"));
+  CHECK(contains(demvv::gnuplot_script(none), "svg size 760,460 "));
+  demvv::Figure nameless = figure(3, 0); // untitled curves make no key rows
+  CHECK(contains(demvv::gnuplot_script(nameless), "svg size 760,460 "));
+}
+
 TEST_CASE("gnuplot draws a figure held in memory as SVG and reports a figure without data, not failing", "[plot]")
 {
   REQUIRE(demvv::gnuplot_available()); // README and CI install gnuplot-nox
