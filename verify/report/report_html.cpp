@@ -72,12 +72,10 @@ std::string lower(std::string_view s)
 }
 
 /// How far inside its tolerance a metric is: value / tolerance (tolerance /
-/// value for a lower bound); below 1 passes.  Shown on a log axis, so an
-/// exact zero is drawn at 1e-16 and an unbounded ratio at 1e6.
-// A metric's value over its tolerance (its tolerance over its value for a
-// lower bound): below 1 it passes.  An exact zero under an upper bound
-// stays 0 (a count that must match, tolerance 0 included); what no number
-// can say (NaN, a lower bound of 0) is drawn far above the line.
+/// value for a lower bound); below 1 passes.  An exact zero under an upper
+/// bound stays 0 (a count that must match, tolerance 0 included; the
+/// figure draws it apart); what no number can say (NaN, a lower bound of
+/// 0) is 1e6, far above the line.
 double margin(const Metric &m)
 {
   const double v = std::abs(m.value), t = std::abs(m.tolerance);
