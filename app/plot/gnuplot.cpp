@@ -150,13 +150,10 @@ std::string style_clause(CurveStyle s, int colour, int point_type)
 
 bool in_memory(const Curve &c) { return c.file.empty(); }
 
-bool plottable(const Figure &f)
-{
-  for (const Curve &c : f.curves)
-    if (!in_memory(c) || !c.x.empty())
-      return true;
-  return false;
-}
+/// Whether a curve is drawn: a file's columns, or points held in memory.
+bool drawn(const Curve &c) { return !in_memory(c) || !c.x.empty(); }
+
+bool plottable(const Figure &f) { return std::any_of(f.curves.begin(), f.curves.end(), drawn); }
 
 /// The last non-empty line of gnuplot's messages, as the reason it failed.
 std::string last_line(const std::string &text)
@@ -269,7 +266,7 @@ KeyLayout key_layout(const Figure &f)
 {
   std::size_t entries = 0, widest = 0;
   for (const Curve &c : f.curves)
-    if (!c.title.empty() && !(in_memory(c) && c.x.empty()))
+    if (!c.title.empty() && drawn(c))
     {
       ++entries;
       widest = std::max(widest, characters(c.title));
@@ -282,13 +279,9 @@ KeyLayout key_layout(const Figure &f)
   return {columns, static_cast<int>((entries + columns - 1) / columns)};
 }
 
-int picture_height(const Figure &f)
-{
-  const KeyLayout k = key_layout(f);
-  return frame_height + (k.rows > 0 ? key_row_height * (k.rows + 1) : 40);
-}
+int picture_height(const KeyLayout &k) { return frame_height + (k.rows > 0 ? key_row_height * (k.rows + 1) : 40); }
 
-std::string key_clause(const Figure &f)
+std::string key_clause(const Figure &f, const KeyLayout &k)
 {
   switch (f.key)
   {
@@ -302,7 +295,6 @@ std::string key_clause(const Figure &f)
   // gnuplot sets the x axis's label on the key's top edge; a bottom margin
   // of the key's rows and four lines more lifts the frame and its label
   // clear of the box.
-  const KeyLayout k = key_layout(f);
   return "set key below box opaque maxcols " + std::to_string(k.columns) + "\nset bmargin " +
          std::to_string(k.rows + 4);
 }
@@ -310,11 +302,12 @@ std::string key_clause(const Figure &f)
 
 std::string gnuplot_script(const Figure &f)
 {
+  const KeyLayout key = key_layout(f);
   std::ostringstream o;
   o << "# demvv figure " << f.name << ": " << comment_text(f.title) << "\n"
     << "# Redraw with: gnuplot " << f.name << ".gp (in this folder; it writes " << f.name << ".svg)\n"
     << "reset\n"
-    << "set terminal svg size " << picture_width << "," << picture_height(f)
+    << "set terminal svg size " << picture_width << "," << picture_height(key)
     << " noenhanced font 'Sans,12' background rgb 'white'\n"
     << "set encoding utf8\n"
     << "set output " << quoted(f.name + ".svg") << "\n"
@@ -323,7 +316,7 @@ std::string gnuplot_script(const Figure &f)
     << "set xlabel " << quoted(f.x_label) << "\n"
     << "set ylabel " << quoted(f.y_label) << "\n"
     << "set grid\n"
-    << key_clause(f) << "\n";
+    << key_clause(f, key) << "\n";
   bool right = false;
   for (const Curve &c : f.curves)
     right = right || c.right_axis;
@@ -351,7 +344,7 @@ std::string gnuplot_script(const Figure &f)
   for (const Curve &c : f.curves)
   {
     ++colour;
-    if (in_memory(c) && c.x.empty())
+    if (!drawn(c))
       continue;
     o << (first ? "" : ", \\\n     ");
     first = false;
