@@ -796,4 +796,17 @@ std::string Deck::documented() const
   }
   return out.str();
 }
+
+bool deck_declares(const Deck &deck, const std::string &key)
+{
+  try
+  {
+    deck.text(key);
+    return true;
+  }
+  catch (const std::logic_error &)
+  {
+    return false;
+  }
+}
 } // namespace demvv

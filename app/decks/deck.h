@@ -209,4 +209,7 @@ private:
   std::string beside_deck(const std::string &name) const;
   std::unique_ptr<Impl> impl_;
 };
+
+/// True when a deck of this kind declares `key`.
+bool deck_declares(const Deck &deck, const std::string &key);
 } // namespace demvv

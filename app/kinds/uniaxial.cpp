@@ -6,6 +6,7 @@
 #include "app/io/section.h"
 #include "app/kinds/prepare.h"
 #include "app/run/analysis.h"
+#include "app/run/input_uncertainty.h"
 #include "app/run/numerical_uncertainty.h"
 
 #include "dem/measure.h"
@@ -76,6 +77,13 @@ void declare_uniaxial(DeckSchema &s)
               "all circumference balls, as in thesis Fig. 5.13; empty for none.  Writes gauge_study.csv.");
   s.real_list("fit window", "0, 0.002", 2, 2, "-",
               "Axial strain interval over which the initial modulus and Poisson's ratio are fitted.");
+  s.leave();
+  s.enter("calibration");
+  s.file("record", "",
+         "The calibration.json of the demvv calibrate run that fitted this deck (its fitted.prm sets it; empty: "
+         "none).  The run then refuses a deck whose fitted entries no longer hold the fitted values, and states "
+         "in summary.json (uncertainty/input_calibration) the input uncertainty u_input of each calibrated "
+         "quantity: the fitted values' standard errors through the model's sensitivity to them.");
   s.leave();
   s.enter("output");
   s.real("strain interval", 1e-4, 0, 1, "-", "Axial strain between output rows (constant-rate history).",
@@ -524,7 +532,9 @@ public:
       {"last_time_step_s", sim.time_step()},
       {"critical_time_step_bound_s", sim.critical_time_step()},
       {"uncertainty",
-       {{"numerical_time_step", numerical_time_step_uncertainty(double(n), spec_.motion.time_step_safety, spec_.motion.local_damping)}}},
+       {{"numerical_time_step",
+         numerical_time_step_uncertainty(double(n), spec_.motion.time_step_safety, spec_.motion.local_damping)},
+        {"input_calibration", spec_.input_uncertainty}}},
       {"contact_resolution", resolved},
       {"neighbour_rebuilds", sim.neighbors().rebuilds()},
       {"energy_j",
@@ -646,7 +656,7 @@ private:
   double servo_error_ = 0; ///< creep: largest |top stress - hold stress| / hold stress during the hold
   double servo_square_sum_ = 0, servo_rows_ = 0; ///< creep: for the RMS of that error
   std::vector<double> row_;
-  BandArray bonds_by_band_{};                  ///< bonds each band held at the start
+  BandArray bonds_by_band_{};                 ///< bonds each band held at the start
   std::array<BandArray, 3> breaks_by_band_{}; ///< tension, shear, displacement breaks by band
 };
 } // namespace
@@ -729,6 +739,7 @@ UniaxialSpec parse_uniaxial(const Deck &deck)
   spec.output.paraview = deck.flag("output/paraview");
   spec.output.paraview_interval = deck.real("output/paraview strain interval");
   spec.output.checkpoint_interval = deck.real("output/checkpoint interval");
+  spec.input_uncertainty = input_uncertainty_block(deck);
   return spec;
 }
 

@@ -72,6 +72,10 @@ struct UniaxialSpec
   std::vector<double> gauge_study;
   double fit_from = 0, fit_to = 0; ///< axial strain window of the elastic fit
   DemOutputSpec output;            ///< clock: axial strain [-] at constant rate, else time [s]
+  /// summary.json's uncertainty/input_calibration: u_input of each
+  /// calibrated quantity when calibration/record names the calibration that
+  /// fitted the deck (app/run/input_uncertainty.h)
+  nlohmann::json input_uncertainty;
 };
 
 UniaxialSpec parse_uniaxial(const Deck &deck);

@@ -3,6 +3,7 @@
 #include "app/decks/deck.h"
 #include "app/io/output.h"
 #include "app/kinds/deck_kinds.h"
+#include "app/run/input_uncertainty.h"
 #include "app/run/run.h"
 #include "app/studies/ranks.h"
 
@@ -112,7 +113,11 @@ private:
   std::vector<Parameter> parameters_;
   std::vector<Target> targets_;
   std::vector<std::string> condition_; ///< the --at entries, "KEY=VALUE"
-  std::vector<double> steps_;          ///< the next finite-difference steps in ln(value)
+  /// "calibration/record=" when the base deck names a calibration (a fitted
+  /// deck calibrated again): its evaluations vary the fitted entries, which
+  /// that record would refuse.
+  std::vector<std::string> clear_record_;
+  std::vector<double> steps_; ///< the next finite-difference steps in ln(value)
   std::vector<Evaluation> history_;
   int iteration_ = 0;
   int exit_code_ = 0; ///< of the evaluation that stopped the fit
@@ -234,6 +239,8 @@ Calibration::Calibration(const CalibrationOptions &o) : o_(o), mpi_(study_ranks(
     throw DeckError("--max-iterations " + std::to_string(o.max_iterations) + ": expected at least 1");
   if (o.settings.out_dir.empty())
     throw DeckError("calibration of " + o.base_deck + ": no --out: expected the calibration directory");
+  if (deck_declares(base, calibration_record_key) && !base.text(calibration_record_key).empty())
+    clear_record_.push_back(std::string(calibration_record_key) + "=");
   std::vector<std::string> start;
   for (const Parameter &p : parameters_)
     start.push_back(format_number(p.start));
@@ -244,6 +251,7 @@ Calibration::Calibration(const CalibrationOptions &o) : o_(o), mpi_(study_ranks(
 std::vector<std::string> Calibration::overrides(const std::vector<std::string> &values) const
 {
   std::vector<std::string> out = condition_;
+  out.insert(out.end(), clear_record_.begin(), clear_record_.end());
   for (std::size_t j = 0; j < parameters_.size(); ++j)
     for (const std::string &key : parameters_[j].keys)
       out.push_back(key + "=" + values[j]);
@@ -595,7 +603,12 @@ void Calibration::write_outputs(const std::string &status, const Evaluation *fin
   for (const std::string &c : condition_)
     deck << " " << c << ";";
   deck << " seeds " << o_.first_seed << " ... " << o_.first_seed + o_.seeds - 1 << ".\n";
-  deck << Deck::from_file(deck_kinds(), o_.base_deck, overrides(e->centre.values)).resolved();
+  // The fitted deck names this record: its runs state u_input from it
+  // (app/run/input_uncertainty.h).
+  std::vector<std::string> fitted = overrides(e->centre.values);
+  fitted.push_back(std::string(calibration_record_key) + "=" +
+                   std::filesystem::absolute(dir + "/calibration.json").lexically_normal().string());
+  deck << Deck::from_file(deck_kinds(), o_.base_deck, fitted).resolved();
   write_atomically(dir + "/fitted.prm", deck.str());
 }
 

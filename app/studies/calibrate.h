@@ -44,8 +44,9 @@
 // ordinary run directories); DIR/evaluations.csv has one row per point
 // evaluated (the history); DIR/calibration.json the targets, the fitted
 // values, their standard errors and correlation, the residuals, the status
-// and the provenance; DIR/fitted.prm the base deck with the fitted values
-// and the condition set.  Everything is rewritten atomically after every
+// and the provenance; DIR/fitted.prm the base deck with the fitted values,
+// the condition set and calibration/record naming DIR/calibration.json (its
+// runs state the fit's input uncertainty: app/run/input_uncertainty.h).  Everything is rewritten atomically after every
 // evaluation (fitted.prm once converged).  Rerunning the same command resumes: evaluations already in
 // DIR are read back (the fit's path is the same), the rest run; a
 // calibration another build of demvv began is refused (--replace starts it

@@ -35,6 +35,9 @@ namespace demvv
 namespace
 {
 namespace fs = std::filesystem;
+
+/// The quantities of stats.csv's budget, in StatedUncertainty's order.
+constexpr const char *budget_quantities[] = {"peak_stress_pa", "strain_at_peak", "initial_modulus_pa"};
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 /// One --vary: its entries (several, tied: each set to the same value)
@@ -350,19 +353,23 @@ SweepRow read_row(const std::string &dir, const Member &m)
   row.broken = broken_at_peak(dir, summary);
   if (summary.contains("sample") && summary.at("sample").is_object())
     row.particles = number(summary.at("sample"), "particles");
-  try
+  // The budget's parts the run states (a summary without them, or damaged,
+  // states none).
+  const auto stated = [&](const char *block, const char *field, double StatedUncertainty::*part)
   {
-    const nlohmann::json &u = summary.at("uncertainty").at("numerical_time_step");
-    if (u.value("estimated", false))
+    try
     {
-      row.u_num_peak = number(u.at("peak_stress_pa"), "u_num_relative");
-      row.u_num_strain = number(u.at("strain_at_peak"), "u_num_relative");
-      row.u_num_modulus = number(u.at("initial_modulus_pa"), "u_num_relative");
+      const nlohmann::json &u = summary.at("uncertainty").at(block);
+      if (u.value("estimated", false))
+        for (std::size_t q = 0; q < row.stated.size(); ++q)
+          row.stated[q].*part = number(u.at(budget_quantities[q]), field);
     }
-  }
-  catch (const nlohmann::json::exception &)
-  {
-  }
+    catch (const nlohmann::json::exception &)
+    {
+    }
+  };
+  stated("numerical_time_step", "u_num_relative", &StatedUncertainty::num);
+  stated("input_calibration", "u_input_relative", &StatedUncertainty::input);
   return row;
 }
 
@@ -442,12 +449,14 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
        "95 % confidence half-width of the mean (ci95, Student t with n - 1 degrees of freedom; sd and ci95 need n "
        ">= 2); the budget of each mean as standard uncertainties: u_seed (the standard error of the mean) and "
        "u_num (the time-step study's, for the members' sample size and step; empty: not estimated, no study "
-       "applies); units: *_pa [Pa], strain [-]\n"
+       "applies) and u_input (the fitted inputs' standard errors through the model's sensitivity, where the deck "
+       "names the calibration that fitted it; empty: not estimated); units: *_pa [Pa], strain [-]\n"
     << "group," << keys
     << "n,peak_stress_mean_pa,peak_stress_sd_pa,peak_stress_ci95_pa,strain_at_peak_mean,strain_at_peak_sd,"
        "strain_at_peak_ci95,initial_modulus_mean_pa,initial_modulus_sd_pa,initial_modulus_ci95_pa,"
-       "peak_stress_u_seed_pa,peak_stress_u_num_pa,strain_at_peak_u_seed,strain_at_peak_u_num,"
-       "initial_modulus_u_seed_pa,initial_modulus_u_num_pa\n";
+       "peak_stress_u_seed_pa,peak_stress_u_num_pa,peak_stress_u_input_pa,strain_at_peak_u_seed,"
+       "strain_at_peak_u_num,strain_at_peak_u_input,initial_modulus_u_seed_pa,initial_modulus_u_num_pa,"
+       "initial_modulus_u_input_pa\n";
   std::size_t group = 0;
   for (std::size_t first = 0; first < members.size(); ++group)
   {
@@ -455,9 +464,12 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     while (last < members.size() && members[last].values == members[first].values)
       ++last;
     std::vector<double> peak, strain, modulus;
-    // u_num of the point: the largest any of its members states (they share
-    // the sample size and step; NaN when one has none).
-    double u_peak = 0, u_strain = 0, u_modulus = 0;
+    // The point's stated parts: the largest any of its members states (they
+    // share the sample size, step and deck; NaN when one states none).
+    std::array<StatedUncertainty, 3> point;
+    point.fill({0, 0});
+    const auto largest = [](double &part, double member)
+    { part = std::isnan(member) ? member : std::max(part, member); };
     std::size_t n = 0;
     for (std::size_t i = first; i < last; ++i)
       if (rows[i].status == "completed")
@@ -466,10 +478,11 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
         peak.push_back(rows[i].peak);
         strain.push_back(rows[i].strain);
         modulus.push_back(rows[i].modulus);
-        u_peak = std::isnan(rows[i].u_num_peak) ? rows[i].u_num_peak : std::max(u_peak, rows[i].u_num_peak);
-        u_strain = std::isnan(rows[i].u_num_strain) ? rows[i].u_num_strain : std::max(u_strain, rows[i].u_num_strain);
-        u_modulus =
-          std::isnan(rows[i].u_num_modulus) ? rows[i].u_num_modulus : std::max(u_modulus, rows[i].u_num_modulus);
+        for (std::size_t q = 0; q < point.size(); ++q)
+        {
+          largest(point[q].num, rows[i].stated[q].num);
+          largest(point[q].input, rows[i].stated[q].input);
+        }
       }
     s << group << ",";
     for (const std::string &v : members[first].values)
@@ -479,9 +492,11 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
                                          ensemble_statistics(modulus)};
     for (const EnsembleStatistics &st : stats)
       s << "," << csv_cell(st.mean) << "," << csv_cell(st.sd) << "," << csv_cell(st.ci95);
-    const double u_num[3] = {u_peak, u_strain, u_modulus};
-    for (int q = 0; q < 3; ++q)
-      s << "," << csv_cell(stats[q].se) << "," << csv_cell(n > 0 ? u_num[q] * std::abs(stats[q].mean) : std::nan(""));
+    const auto absolute = [&](double relative, std::size_t q)
+    { return n > 0 ? relative * std::abs(stats[q].mean) : std::nan(""); };
+    for (std::size_t q = 0; q < point.size(); ++q)
+      s << "," << csv_cell(stats[q].se) << "," << csv_cell(absolute(point[q].num, q)) << ","
+        << csv_cell(absolute(point[q].input, q));
     s << "\n";
     first = last;
   }
@@ -718,19 +733,6 @@ EnsembleStatistics ensemble_statistics(const std::vector<double> &values)
 std::string csv_cell(double v) { return std::isfinite(v) ? format_number(v) : ""; }
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
-bool deck_declares(const Deck &deck, const std::string &key)
-{
-  try
-  {
-    deck.text(key);
-    return true;
-  }
-  catch (const std::logic_error &)
-  {
-    return false;
-  }
-}
 
 /// Parses the deck of every point (its kind's parse reads the entries it
 /// uses, runs nothing).  A point refused beside others that run is a finding

@@ -27,9 +27,12 @@
 // peak, the sample's ball count, run time); DIR/stats.csv has, per set of
 // varied values, the mean, standard deviation and 95 % Student-t confidence
 // half-width over the completed seeds, and the uncertainty budget of each
-// mean: u_seed (its standard error) and u_num (the time-step study's
+// mean: u_seed (its standard error), u_num (the time-step study's
 // standard uncertainty for the members' sample size and step, empty where
-// none applies: app/run/numerical_uncertainty.h).  Both are built from the members'
+// none applies: app/run/numerical_uncertainty.h) and u_input (the fitted
+// inputs' standard uncertainty carried to the quantity, where the deck
+// names the calibration that fitted it: app/run/input_uncertainty.h;
+// empty otherwise).  Both are built from the members'
 // run directories alone (summary.json, series.csv), rewritten atomically as
 // members complete.  DIR/plots holds the study's figures, drawn when the
 // sweep ends (gnuplot scripts and their data beside the SVG pictures): peak
@@ -58,6 +61,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -107,6 +111,14 @@ struct SweepPlan
   std::size_t first_factor_keys = 1;
 };
 
+/// A run's relative standard uncertainties of one quantity, as its
+/// summary.json states them; NaN where not estimated.
+struct StatedUncertainty
+{
+  double num = std::numeric_limits<double>::quiet_NaN();   ///< u_num / |q|: uncertainty/numerical_time_step
+  double input = std::numeric_limits<double>::quiet_NaN(); ///< u_input / |q|: uncertainty/input_calibration
+};
+
 /// One member's outcome, read from its run directory: status "pending",
 /// "completed", "fault", "refused", "interrupted"; the measured quantities
 /// NaN unless completed.
@@ -122,12 +134,9 @@ struct SweepRow
   double broken = std::numeric_limits<double>::quiet_NaN();    ///< bonds broken at the peak [-]
   double particles = std::numeric_limits<double>::quiet_NaN(); ///< balls in the sample [-]
   double seconds = std::numeric_limits<double>::quiet_NaN();   ///< run time [s]
-  /// The time-step study's standard uncertainty u_num of peak stress, strain
-  /// at peak and initial modulus, relative, as the member's summary states it
-  /// (uncertainty/numerical_time_step); NaN where it is not estimated.
-  double u_num_peak = std::numeric_limits<double>::quiet_NaN();
-  double u_num_strain = std::numeric_limits<double>::quiet_NaN();
-  double u_num_modulus = std::numeric_limits<double>::quiet_NaN();
+  /// The standard uncertainties of peak stress, strain at peak and initial
+  /// modulus (in that order) that the member's summary states.
+  std::array<StatedUncertainty, 3> stated;
 };
 
 struct SweepOutcome
@@ -167,6 +176,4 @@ SweepOutcome run_sweep(const SweepPlan &plan, const SweepSettings &settings);
 /// is a DeckError before any member runs.
 int command_sweep(const SweepOptions &options);
 
-/// True when a deck of this kind declares `key`.
-bool deck_declares(const Deck &deck, const std::string &key);
 } // namespace demvv

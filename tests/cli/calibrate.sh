@@ -20,7 +20,9 @@
 #    evaluations kept, no fitted deck); an unreachable target (30 MPa at 0.4 % strain; exit 3,
 #    "not converged"); a target beyond every value the deck accepts (exit 3, not converged);
 #    a parameter no target moves (exit 3, "not determined", no standard error).
-# 5. under MPI two ranks give the same fit, byte for byte, as one process.
+# 5. the fitted deck names its calibration: its runs and sweeps state the
+#    fit's input uncertainty u_input; a changed fitted entry is refused.
+# 6. under MPI two ranks give the same fit, byte for byte, as one process.
 # Usage: calibrate.sh DEMVV WORK_DIR [MPIRUN]
 set -u
 . "$(dirname "$0")/multi_run_support.sh"
@@ -146,7 +148,53 @@ expect 3 "no target moves with balls/friction" idle -- "$demvv" calibrate "$latt
   [ "$(field "$work/idle/calibration.json" '"standard_error" in d["parameters"][0]')" = False ] ||
   fail "an undetermined parameter was recorded as fitted"
 
-# 5. MPI: the same fit on two ranks.
+# 5. The fitted deck carries its calibration: a run of it states u_input,
+#    the fitted strength's relative standard error r times the elasticity g
+#    = slope / fitted mean that calibration.json records (one parameter:
+#    u_input / |q| = |g| r, app/run/input_uncertainty.h), for the target
+#    only; a sweep of it carries u_input x mean into stats.csv; a deck whose
+#    fitted entry was changed, or whose record is not a converged
+#    calibration, is refused (exit 2, one line); the fitted deck calibrates
+#    again (its evaluations vary the fitted entries without the record, which
+#    would refuse them).
+"$demvv" sweep "$work/noisy_a/fitted.prm" --seeds 2 --out "$work/fitted_sweep" --threads 1 --quiet \
+  2>"$work/err_fitted_sweep" || fail "sweep of the fitted deck: $(tail -1 "$work/err_fitted_sweep")"
+python3 - "$work" <<'EOF' || fail "the fitted deck's runs do not state the calibration's u_input"
+import csv, glob, json, math, sys
+w = sys.argv[1]
+c = json.load(open(w + "/noisy_a/calibration.json"))
+t, p = c["targets"][0], c["parameters"][0]
+expected = abs(t["slope_per_ln_parameter"][0] / t["fitted_mean"]) * p["relative_standard_error"]
+assert expected > 0, expected
+summaries = sorted(glob.glob(w + "/fitted_sweep/members/*/summary.json"))
+assert len(summaries) == 2, summaries
+for f in summaries:
+    u = json.load(open(f))["uncertainty"]["input_calibration"]
+    assert u["estimated"] and u["record"].endswith("/noisy_a/calibration.json"), u
+    assert math.isclose(u["peak_stress_pa"]["u_input_relative"], expected, rel_tol=1e-12), (u, expected)
+    assert u["strain_at_peak"]["u_input_relative"] is None and "not a target" in u["strain_at_peak"]["why"], u
+rows = list(csv.DictReader(l for l in open(w + "/fitted_sweep/stats.csv") if not l.startswith("#")))
+mean = float(rows[0]["peak_stress_mean_pa"])
+assert math.isclose(float(rows[0]["peak_stress_u_input_pa"]), expected * mean, rel_tol=1e-9), rows[0]
+assert rows[0]["strain_at_peak_u_input"] == "", rows[0]
+print("u_input / peak", expected)
+EOF
+expect 2 "here: expected the fitted value" changed_fit -- "$demvv" run "$work/noisy_a/fitted.prm" \
+  --set "bonds/normal strength=99" --out "$work/changed_fit" --quiet
+one_line "$work/err_changed_fit" "a changed fitted entry"
+sed 's/"status": "converged"/"status": "not converged"/' "$work/noisy_a/calibration.json" >"$work/unconverged.json"
+expect 2 "did not converge" unconverged -- "$demvv" run "$work/noisy_a/fitted.prm" \
+  --set "calibration/record=$work/unconverged.json" --out "$work/unconverged_run" --quiet
+one_line "$work/err_unconverged" "an unconverged record"
+# From the fitted value on the same seeds the target is met at once: one
+# evaluation, converged, and its fitted deck names the new record.
+fitted=$(field "$work/noisy_a/calibration.json" 'd["parameters"][0]["deck_value"]')
+"$demvv" calibrate "$work/noisy_a/fitted.prm" --fit "$strength=$fitted" --target peak_stress_pa=1e7 --seeds 3 \
+  --out "$work/again" --threads 1 --quiet 2>"$work/err_again" &&
+  [ "$(ls "$work/again/evaluations")" = 000 ] && grep -q "set record *= *$work/again/calibration.json" "$work/again/fitted.prm" ||
+  fail "the fitted deck does not calibrate again: $(tail -1 "$work/err_again")"
+
+# 6. MPI: the same fit on two ranks.
 if [ -n "$mpirun" ]; then
   calibrate_noisy noisy_mpi 1 "$launch_np2" 2>"$work/err_mpi" || fail "two ranks: $(tail -1 "$work/err_mpi")"
   same_fit noisy_a noisy_mpi || fail "two ranks give another fit than one process"

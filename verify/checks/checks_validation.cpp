@@ -42,6 +42,7 @@
 
 #include "app/decks/deck.h"
 #include "app/io/output.h"
+#include "app/run/input_uncertainty.h"
 #include "app/run/numerical_uncertainty.h"
 #include "app/studies/calibrate.h"
 #include "app/studies/sweep.h"
@@ -275,15 +276,10 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
                                            "viscosities alone (predicted)"};
   // The input uncertainty: the fitted strength's relative standard error
   // (seeds and the law's 10 % at the calibration point) through the
-  // model's own sensitivity there, d ln S / d ln(strength) = the
-  // calibration's slope over its fitted mean, taken as the same elasticity
-  // at every held-out condition.
-  const nlohmann::json &target = c.at("targets").at(0);
-  const nlohmann::json &slopes = target.at("slope_per_ln_parameter"); // one per fitted parameter: the strength
-  const double elasticity =
-    (slopes.size() == 1 && slopes.at(0).is_number() ? slopes.at(0).get<double>() : std::nan("")) /
-    number_at(target, "fitted_mean");
-  const double input_relative = std::abs(elasticity) * number_at(c.at("parameters").at(0), "relative_standard_error");
+  // model's own sensitivity there (the calibration's slope over its fitted
+  // mean), taken as the same elasticity at every held-out condition: as a
+  // run of the fitted deck states it (app/run/input_uncertainty.h).
+  const double input_relative = calibrated_input_uncertainty(c, "peak_stress_pa");
   const Deck validation_deck = Deck::from_file(deck_kinds(), s.deck, s.sample);
   const double safety = validation_deck.real("motion/time step safety");
   const double damping = validation_deck.real("motion/local damping");
