@@ -8,9 +8,22 @@
 # on every link line: a symbol a lower room took from a higher one would
 # not resolve.  The layering test (cmake/layering.cmake) holds the includes
 # to the same floors.
+# demvv_unity_build(TARGET): the target's sources compiled in batches of
+# eight, each batch one translation unit, so that the headers every source
+# of a room includes (nlohmann/json, the decks, deal.II's flags) are read
+# and their templates instantiated once a batch, not once a file: the rooms
+# compile in about half the time.  Names private to a source (its anonymous
+# namespace) must therefore differ across the sources of one room.  The
+# engine (dem/) and the continuum companion are compiled file by file: their
+# code generation stays what the benchmarks measured.
+function(demvv_unity_build name)
+  set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+endfunction()
+
 function(demvv_room name)
   cmake_parse_arguments(ROOM "" "" "SOURCES;LINKS" ${ARGN})
   add_library(${name} STATIC ${ROOM_SOURCES})
+  demvv_unity_build(${name})
   add_dependencies(${name} demvv_source_state)
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/app)
   demvv_deal_ii_target(${name})

@@ -10,12 +10,12 @@ namespace
 {
 constexpr double two_pi = 6.283185307179586;
 
-const std::vector<std::string> kind_names = {"constant rate", "creep", "relaxation", "cyclic"};
+const std::vector<std::string> history_names = {"constant rate", "creep", "relaxation", "cyclic"};
 } // namespace
 
 void LoadingHistory::declare(DeckSchema &s)
 {
-  s.choice("history", "constant rate", kind_names,
+  s.choice("history", "constant rate", history_names,
            "'constant rate': the platens approach at the loading rate to the final strain; 'creep': the axial "
            "stress rises linearly to the hold stress over the ramp time, then is held (DEM: a servo-controlled "
            "top platen); 'relaxation': the strain rises at the loading rate to the hold strain, then is held; "
@@ -46,7 +46,7 @@ LoadingHistory LoadingHistory::parse(const Deck &d)
 {
   LoadingHistory h;
   const std::string name = d.text("loading/history");
-  h.kind = static_cast<Kind>(std::find(kind_names.begin(), kind_names.end(), name) - kind_names.begin());
+  h.kind = static_cast<Kind>(std::find(history_names.begin(), history_names.end(), name) - history_names.begin());
   h.strain_rate = d.real("loading/strain rate");
   h.ramp_time = d.real("loading/ramp time");
   h.final_strain = d.real("loading/final strain");
@@ -165,7 +165,7 @@ double LoadingHistory::largest_prescribed() const
 
 double LoadingHistory::axial_stress(double t) const { return hold_stress * std::min(1.0, t / ramp_time); }
 
-std::string LoadingHistory::name() const { return kind_names[static_cast<std::size_t>(kind)]; }
+std::string LoadingHistory::name() const { return history_names[static_cast<std::size_t>(kind)]; }
 
 nlohmann::json LoadingHistory::to_json() const
 {

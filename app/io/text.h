@@ -25,6 +25,8 @@ public:
 
 /// The one infinity (open bounds of deck entries, "no limit").
 constexpr double inf = std::numeric_limits<double>::infinity();
+/// Not a number: a quantity not measured, not estimated or not defined.
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 /// `v` with `significant` significant digits as printf's %g writes it
 /// ("inf", "-inf", "nan" for the non-finite).

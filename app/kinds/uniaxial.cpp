@@ -159,7 +159,7 @@ void write_end_section(const std::string &path, const dem::Simulation &sim, cons
     out.write({c.x, c.z, c.radius});
 }
 
-const std::vector<std::string> series_columns = {"time_s",
+const std::vector<std::string> uniaxial_columns = {"time_s",
                                                  "axial_strain",
                                                  "axial_stress_pa",
                                                  "axial_stress_top_pa",
@@ -276,7 +276,7 @@ public:
     // with bands of other thicknesses, against all balls on the circumference.
     for (double t : spec.gauge_study)
       study_gauges_.emplace_back(sim.particles(), dem::Vec3::Zero(), 0.5 * setup.cell.height, setup.cell.height, t);
-    std::vector<std::string> columns = series_columns;
+    std::vector<std::string> columns = uniaxial_columns;
     if (!spec.gauge_study.empty())
     {
       for (double t : spec.gauge_study)
@@ -447,7 +447,7 @@ public:
   void record(const dem::Simulation &sim) override
   {
     const dem::EnergyLedger e = sim.energy();
-    row_.insert(row_.begin() + static_cast<std::ptrdiff_t>(series_columns.size()) - 7,
+    row_.insert(row_.begin() + static_cast<std::ptrdiff_t>(uniaxial_columns.size()) - 7,
                 {e.kinetic, e.strain, e.friction, e.damping, e.bond_released, e.boundary_work, e.residual()});
     series_.add(std::move(row_));
     row_.clear();

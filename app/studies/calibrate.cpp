@@ -31,7 +31,6 @@ namespace demvv
 namespace
 {
 namespace fs = std::filesystem;
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double largest_step = 0.4;    ///< finite-difference step in ln(value), at most
 constexpr double converged_step = 1e-4; ///< a step in every ln(value) below this ends the fit
 

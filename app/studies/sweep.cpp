@@ -38,7 +38,6 @@ namespace fs = std::filesystem;
 
 /// The quantities of stats.csv's budget, in StatedUncertainty's order.
 constexpr const char *budget_quantities[] = {"peak_stress_pa", "strain_at_peak", "initial_modulus_pa"};
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 /// One --vary: its entries (several, tied: each set to the same value)
 /// and their values.
@@ -447,7 +446,7 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
   s << "# demvv sweep of " << base_path
     << ": per set of varied values, over the completed seeds: n, mean, sample standard deviation (sd) and the "
        "95 % confidence half-width of the mean (ci95, Student t with n - 1 degrees of freedom; sd and ci95 need n "
-       ">= 2); the budget of each mean as standard uncertainties: u_seed (the standard error of the mean) and "
+       ">= 2); the budget of each mean as standard uncertainties: u_seed (the standard error of the mean), "
        "u_num (the time-step study's, for the members' sample size and step; empty: not estimated, no study "
        "applies) and u_input (the fitted inputs' standard errors through the model's sensitivity, where the deck "
        "names the calibration that fitted it; empty: not estimated); units: *_pa [Pa], strain [-]\n"

@@ -22,7 +22,6 @@ namespace
 {
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path &p) { return nlohmann::json::parse(demvv::read_file(p.string())); }
 } // namespace
 
 TEST_CASE("every deck in cases/ parses into its kind's spec", "[decks]")
@@ -91,7 +90,7 @@ TEST_CASE("a scene reports how many steps resolve the shortest contact period", 
   const fs::path dir = demvv_tests::test_folder("contact_resolution");
   fs::remove_all(dir);
   demvv::run_scene(deck, {dir.string(), 0, false});
-  nlohmann::json s = read_json(dir / "summary.json");
+  nlohmann::json s = demvv_tests::read_json(dir / "summary.json");
   CHECK(s["critical_time_step_bound_s"].is_number());
   CHECK(s["contact_resolution"]["steps_per_shortest_contact_period"].get<double>() ==
         Approx(dem::pi / 0.8).epsilon(1e-9));
@@ -99,7 +98,7 @@ TEST_CASE("a scene reports how many steps resolve the shortest contact period", 
   deck.set("motion/time step safety", "0.1");
   fs::remove_all(dir);
   demvv::run_scene(deck, {dir.string(), 0, false});
-  s = read_json(dir / "summary.json");
+  s = demvv_tests::read_json(dir / "summary.json");
   CHECK(s["contact_resolution"]["steps_per_shortest_contact_period"].get<double>() ==
         Approx(10 * dem::pi).epsilon(1e-9));
   CHECK_FALSE(s["contact_resolution"].contains("warning"));
@@ -108,7 +107,7 @@ TEST_CASE("a scene reports how many steps resolve the shortest contact period", 
   deck.set("motion/local damping", "0.7");
   fs::remove_all(dir);
   demvv::run_scene(deck, {dir.string(), 0, false});
-  s = read_json(dir / "summary.json");
+  s = demvv_tests::read_json(dir / "summary.json");
   CHECK(s["contact_resolution"]["steps_per_shortest_contact_period"].get<double>() ==
         Approx(10 * dem::pi * std::sqrt(1.7)).epsilon(1e-9));
 }

@@ -20,13 +20,6 @@ namespace
 {
 namespace fs = std::filesystem;
 
-std::string temp_path(const std::string &name)
-{
-  const fs::path dir = demvv_tests::test_folder("test_inputs");
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
-
 std::string error_of(const std::function<void()> &f)
 {
   try
@@ -51,7 +44,7 @@ TEST_CASE("only regular files within their size limit are read", "[inputs]")
   CHECK_THAT(error_of([] { demvv::read_input("/no/such/deck.prm", "deck file", demvv::max_deck_bytes); }),
              Catch::Contains("cannot open the deck file"));
   // One byte over the limit is refused before it is read; at the limit it is read.
-  const std::string big = temp_path("big.prm");
+  const std::string big = demvv_tests::test_file("test_inputs", "big.prm");
   std::ofstream(big) << std::string(demvv::max_deck_bytes + 1, '#');
   const std::string message = error_of([&] { demvv::Deck::from_file(demvv::deck_kinds(), big); });
   CHECK_THAT(message, Catch::Contains(big) && Catch::Contains("expected at most 1 MiB"));
@@ -114,15 +107,19 @@ TEST_CASE("an error that echoes a huge value stays readable and keeps what was e
 
 TEST_CASE("a deck's text must be UTF-8 and name one kind", "[inputs][deck]")
 {
-  const std::string latin1 = temp_path("latin1.prm");
+  const std::string latin1 = demvv_tests::test_file("test_inputs", "latin1.prm");
   std::ofstream(latin1) << "set kind = scene\nset title = caract\xe9ristique\n";
   CHECK_THAT(error_of([&] { demvv::Deck::from_file(demvv::deck_kinds(), latin1); }),
              Catch::Contains(latin1 + ":2") && Catch::Contains("'title'") && Catch::Contains("caract\\xE9ristique") &&
                Catch::Contains("expected UTF-8"));
-  CHECK_THAT(
-    error_of([&] { demvv::Deck::from_file(demvv::deck_kinds(), temp_path("latin1.prm"), {"title=\xe9t\xe9"}); }),
-    Catch::Contains("latin1.prm:2"));
-  const std::string twice = temp_path("twice.prm");
+  CHECK_THAT(error_of(
+               [&]
+               {
+                 demvv::Deck::from_file(demvv::deck_kinds(), demvv_tests::test_file("test_inputs", "latin1.prm"),
+                                        {"title=\xe9t\xe9"});
+               }),
+             Catch::Contains("latin1.prm:2"));
+  const std::string twice = demvv_tests::test_file("test_inputs", "twice.prm");
   std::ofstream(twice) << "set kind = scene\nset kind = prepare\n";
   CHECK_THAT(error_of([&] { demvv::Deck::from_file(demvv::deck_kinds(), twice); }),
              Catch::Contains(twice + ":2") && Catch::Contains("'prepare'") && Catch::Contains("one 'set kind'"));

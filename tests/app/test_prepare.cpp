@@ -37,13 +37,6 @@ namespace
 {
 namespace fs = std::filesystem;
 
-std::string temp_path(const std::string &name)
-{
-  const fs::path dir = demvv_tests::test_folder("test_prepare");
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
-
 /// A finished sample cache entry of a deck whose resolved text is `deck`,
 /// in `cache`, made by the build whose sources hash is `sources` (this
 /// build's own when empty), its sample last used `days_ago`; its folder.
@@ -114,7 +107,7 @@ TEST_CASE("a 200-ball preparation meets its own targets and feeds a uniaxial tes
   CHECK(r["fabric_deviator_norm"].get<double>() < 3 * std::sqrt(2.0 / (3.0 * contacts)));
 
   // The sample file is what a uniaxial deck loads.
-  const std::string file = temp_path("small_sample.json");
+  const std::string file = demvv_tests::test_file("test_prepare", "small_sample.json");
   demvv::write_sample(file, result.sample);
   demvv::Deck test = demvv::Deck::defaults(demvv::deck_kinds(), "uniaxial");
   test.set("sample/source", "file");
@@ -147,7 +140,7 @@ TEST_CASE("a saved run continues exactly as if it had never stopped", "[prepare]
   file.snapshot = a.snapshot();
   file.cell.bottom = 0;
   file.cell.top = top;
-  const std::string path = temp_path("continue.json");
+  const std::string path = demvv_tests::test_file("test_prepare", "continue.json");
   demvv::write_sample(path, file);
   dem::Simulation b(demvv::read_sample(path).snapshot, dem::make_contact_model("linear", {}), {});
   for (int k = 0; k < 400; ++k)
@@ -229,7 +222,7 @@ TEST_CASE("preparing a cached sample leaves the caller's thread count as it was 
   // what is tested (ctest runs each test case in a process of its own).
   unsetenv("DEMVV_CACHE");
   unsetenv("OMP_NUM_THREADS");
-  const fs::path dir = temp_path("cached");
+  const fs::path dir = demvv_tests::test_file("test_prepare", "cached");
   const std::string deck = small_prepare_deck_file(dir);
   // A count idle_cores(), which a preparation left to itself would take,
   // can never return: more threads than cores.
@@ -255,7 +248,7 @@ TEST_CASE("preparing a cached sample leaves the caller's thread count as it was 
 TEST_CASE("the sample cache keeps this build's samples, those of the builds used last and those used lately",
           "[prepare][cache]")
 {
-  const fs::path cache = temp_path("cache_pruning");
+  const fs::path cache = demvv_tests::test_file("test_prepare", "cache_pruning");
   fs::remove_all(cache);
   fs::create_directories(cache);
   const auto old = fs::file_time_type::clock::now() - std::chrono::hours(24 * 60);
@@ -331,7 +324,7 @@ TEST_CASE("the sample cache keeps this build's samples, those of the builds used
 TEST_CASE("a sample served from the cache is marked as used", "[prepare][cache]")
 {
   unsetenv("DEMVV_CACHE");
-  const fs::path dir = temp_path("cache_use");
+  const fs::path dir = demvv_tests::test_file("test_prepare", "cache_use");
   const std::string deck = small_prepare_deck_file(dir);
   // A stand-in for a prepared sample: a hit never reads it.
   const fs::path file = demvv::cached_sample_file_name(deck, {});

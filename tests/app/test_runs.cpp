@@ -53,7 +53,6 @@ nlohmann::json physics_of(nlohmann::json s)
   return s;
 }
 
-nlohmann::json read_json(const fs::path &p) { return nlohmann::json::parse(demvv::read_file(p.string())); }
 } // namespace
 
 TEST_CASE("same deck and seed give identical series whatever the thread count", "[run]")
@@ -358,7 +357,7 @@ TEST_CASE("a paused run resumed from its checkpoint equals the run that never st
   const auto first = demvv::run_uniaxial(deck, pause);
   REQUIRE(first.status.paused);
   CHECK(fs::exists(demvv::checkpoint_state_file(split.string())));
-  CHECK(read_json(split / "summary.json")["status"]["state"] == "paused");
+  CHECK(demvv_tests::read_json(split / "summary.json")["status"]["state"] == "paused");
   CHECK_NOTHROW(demvv::check_resumable(split.string(), deck));
 
   demvv::RunOptions resume{split.string(), 2, false};
@@ -374,8 +373,9 @@ TEST_CASE("a paused run resumed from its checkpoint equals the run that never st
     INFO(file);
     CHECK(demvv::read_file((split / file).string()) == demvv::read_file((whole / file).string()));
   }
-  CHECK(physics_of(read_json(split / "summary.json")) == physics_of(read_json(whole / "summary.json")));
-  CHECK(read_json(split / "summary.json")["status"]["state"] == "completed");
+  CHECK(physics_of(demvv_tests::read_json(split / "summary.json")) ==
+        physics_of(demvv_tests::read_json(whole / "summary.json")));
+  CHECK(demvv_tests::read_json(split / "summary.json")["status"]["state"] == "completed");
 }
 
 TEST_CASE("a resume is refused for another deck or a directory without a checkpoint", "[run][resume]")
@@ -579,7 +579,8 @@ TEST_CASE("a check's sweep runs each member on at most verify's --threads", "[ru
   omp_set_num_threads(before);
   REQUIRE(outcome.rows.size() == 1);
   REQUIRE(outcome.rows[0].status == "completed");
-  const nlohmann::json threads = read_json(fs::path(outcome.rows[0].directory) / "summary.json")["status"]["threads"];
+  const nlohmann::json threads =
+    demvv_tests::read_json(fs::path(outcome.rows[0].directory) / "summary.json")["status"]["threads"];
   CHECK(threads["governed"] == true);
   CHECK(threads["most"] == 1);
 }

@@ -19,13 +19,6 @@ namespace
 {
 namespace fs = std::filesystem;
 
-std::string temp_path(const std::string &name)
-{
-  const fs::path dir = demvv_tests::test_folder("test_sample_file");
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
-
 /// A bonded FCC cylinder under compression with a Burger's law, stepped a while.
 dem::Simulation loaded_burgers_cylinder(dem::WallIndex &top)
 {
@@ -53,7 +46,7 @@ TEST_CASE("a version 2 sample file carries Burger's element state exactly", "[sa
   file.snapshot = a.snapshot();
   file.cell.bottom = 0;
   file.cell.top = top;
-  const std::string path = temp_path("burgers.json");
+  const std::string path = demvv_tests::test_file("test_sample_file", "burgers.json");
   demvv::write_sample(path, file);
 
   const demvv::SampleFile back = demvv::read_sample(path);
@@ -112,7 +105,7 @@ TEST_CASE("a sample file of an unknown contact law is refused, naming it", "[sam
   nlohmann::json doc = nlohmann::json::parse(in);
   doc["format_version"] = 2;
   doc["contact_law"] = "no_such_law";
-  const std::string path = temp_path("unknown_law.json");
+  const std::string path = demvv_tests::test_file("test_sample_file", "unknown_law.json");
   std::ofstream(path) << doc.dump();
   CHECK_THROWS_WITH(demvv::read_sample(path), Catch::Contains("no_such_law"));
 }
@@ -135,7 +128,7 @@ TEST_CASE("a touching contact needs its unit normal, one that carries no force k
   nlohmann::json doc = original;
   for (std::size_t k : {nx, ny, nz})
     doc["contacts"]["rows"][r][k] = 0.0;
-  const std::string broken = temp_path("touching_without_normal.json");
+  const std::string broken = demvv_tests::test_file("test_sample_file", "touching_without_normal.json");
   std::ofstream(broken) << doc.dump();
   CHECK_THROWS_WITH(demvv::read_sample(broken),
                     Catch::Contains("contacts.rows[" + std::to_string(r) + "].nx") && Catch::Contains("unit normal"));
@@ -144,7 +137,7 @@ TEST_CASE("a touching contact needs its unit normal, one that carries no force k
   // file says (earlier builds kept the last normal of a bond broken apart).
   doc = original;
   doc["contacts"]["rows"][r][touching] = 0;
-  const std::string apart = temp_path("apart_with_normal.json");
+  const std::string apart = demvv_tests::test_file("test_sample_file", "apart_with_normal.json");
   std::ofstream(apart) << doc.dump();
   const demvv::SampleFile loaded = demvv::read_sample(apart);
   CHECK_FALSE(loaded.snapshot.contacts[r].state.touching());
