@@ -39,6 +39,24 @@ namespace fs = std::filesystem;
 /// The quantities of stats.csv's budget, in StatedUncertainty's order.
 constexpr const char *budget_quantities[] = {"peak_stress_pa", "strain_at_peak", "initial_modulus_pa"};
 
+/// The stated parts of one point's budget (members first .. last - 1) for
+/// quantity q: the largest any completed member states (they share the
+/// sample size, step and deck; NaN when one states none).
+StatedUncertainty point_stated(const std::vector<SweepRow> &rows, std::size_t first, std::size_t last, std::size_t q)
+{
+  StatedUncertainty u{0, 0};
+  const auto largest = [](double &part, double member) { part = std::isnan(member) ? member : std::max(part, member); };
+  bool any = false;
+  for (std::size_t i = first; i < last; ++i)
+    if (rows[i].status == "completed")
+    {
+      any = true;
+      largest(u.num, rows[i].stated[q].num);
+      largest(u.input, rows[i].stated[q].input);
+    }
+  return any ? u : StatedUncertainty{};
+}
+
 /// One --vary: its entries (several, tied: each set to the same value)
 /// and their values.
 struct Varied
@@ -463,12 +481,6 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
     while (last < members.size() && members[last].values == members[first].values)
       ++last;
     std::vector<double> peak, strain, modulus;
-    // The point's stated parts: the largest any of its members states (they
-    // share the sample size, step and deck; NaN when one states none).
-    std::array<StatedUncertainty, 3> point;
-    point.fill({0, 0});
-    const auto largest = [](double &part, double member)
-    { part = std::isnan(member) ? member : std::max(part, member); };
     std::size_t n = 0;
     for (std::size_t i = first; i < last; ++i)
       if (rows[i].status == "completed")
@@ -477,11 +489,6 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
         peak.push_back(rows[i].peak);
         strain.push_back(rows[i].strain);
         modulus.push_back(rows[i].modulus);
-        for (std::size_t q = 0; q < point.size(); ++q)
-        {
-          largest(point[q].num, rows[i].stated[q].num);
-          largest(point[q].input, rows[i].stated[q].input);
-        }
       }
     s << group << ",";
     for (const std::string &v : members[first].values)
@@ -491,11 +498,12 @@ std::vector<SweepRow> write_tables(const std::string &out, const SweepPlan &plan
                                          ensemble_statistics(modulus)};
     for (const EnsembleStatistics &st : stats)
       s << "," << csv_cell(st.mean) << "," << csv_cell(st.sd) << "," << csv_cell(st.ci95);
-    const auto absolute = [&](double relative, std::size_t q)
-    { return n > 0 ? relative * std::abs(stats[q].mean) : std::nan(""); };
-    for (std::size_t q = 0; q < point.size(); ++q)
-      s << "," << csv_cell(stats[q].se) << "," << csv_cell(absolute(point[q].num, q)) << ","
-        << csv_cell(absolute(point[q].input, q));
+    for (std::size_t q = 0; q < std::size(budget_quantities); ++q)
+    {
+      const StatedUncertainty u = point_stated(rows, first, last, q);
+      const double scale = std::abs(stats[q].mean);
+      s << "," << csv_cell(stats[q].se) << "," << csv_cell(u.num * scale) << "," << csv_cell(u.input * scale);
+    }
     s << "\n";
     first = last;
   }
@@ -583,8 +591,56 @@ struct StudyQuantity
   double SweepRow::*value;
 };
 
-/// The study's figures (peak stress, strain at peak, initial modulus) into
-/// DIR/plots; a figure gnuplot could not draw is one line, never fatal.
+/// The uncertainty budget of quantity q's means, part by part in per cent
+/// of the mean at each point: u_seed (the seeds' standard error), u_num and
+/// u_input where the members state them; a part no point has is named in
+/// the caption as not estimated (none at all: no figure).
+std::optional<Figure> budget_figure(const StudyQuantity &q, std::size_t qi, const SweepPlan &plan,
+                                    const StudyAbscissa &a, const std::vector<SweepRow> &rows, bool by_seed)
+{
+  const std::size_t per_point = rows.size() / std::max<std::size_t>(plan.points.size(), 1);
+  const std::vector<std::string> parts = {"u_seed (seeds' standard error)", "u_num (time step)",
+                                          "u_input (fitted inputs)"};
+  std::vector<std::vector<double>> x(parts.size()), y(parts.size());
+  for (std::size_t p = 0; p < plan.points.size(); ++p)
+  {
+    std::vector<double> values;
+    for (std::size_t i = p * per_point; i < (p + 1) * per_point; ++i)
+      if (rows[i].status == "completed" && std::isfinite(rows[i].*q.value))
+        values.push_back(rows[i].*q.value);
+    const EnsembleStatistics st = ensemble_statistics(values);
+    const StatedUncertainty u = point_stated(rows, p * per_point, (p + 1) * per_point, qi);
+    const double share[3] = {100 * st.se / std::abs(st.mean), 100 * u.num, 100 * u.input};
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      if (std::isfinite(share[k]))
+      {
+        x[k].push_back(by_seed ? double(p + 1) : a.x[p]);
+        y[k].push_back(share[k]);
+      }
+  }
+  std::vector<Curve> curves;
+  std::string absent;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    if (x[k].empty())
+      absent += (absent.empty() ? "" : ", ") + parts[k].substr(0, parts[k].find(' '));
+    else
+      curves.push_back(curve(parts[k], x[k], y[k], CurveStyle::points));
+  if (curves.empty())
+    return std::nullopt;
+  Figure f = make_figure("budget_" + q.name, q.title + ": the uncertainty budget of the means",
+                         by_seed ? "point [-]" : a.label, "standard uncertainty [% of the mean]", curves,
+                         "The standard uncertainties of each point's mean over seeds, part by part (stats.csv): "
+                         "u_seed the seeds' standard error, u_num the time-step study's, u_input the fitted "
+                         "inputs' through the model's sensitivity." +
+                           (absent.empty() ? std::string() : " Not estimated for these members: " + absent + "."));
+  f.log_x = !by_seed && a.log;
+  f.x_margins = true;
+  return f;
+}
+
+/// The study's figures (peak stress, strain at peak, initial modulus, and
+/// the budget of each) into DIR/plots; a figure gnuplot could not draw is
+/// one line, never fatal.
 void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Deck &base,
                         const std::vector<SweepRow> &rows)
 {
@@ -597,8 +653,9 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
     {"initial_modulus", "Initial modulus", "initial modulus [GPa]", 1e-9, &SweepRow::modulus},
   };
   std::vector<Figure> figures;
-  for (const StudyQuantity &q : quantities)
+  for (std::size_t qi = 0; qi < quantities.size(); ++qi)
   {
+    const StudyQuantity &q = quantities[qi];
     std::vector<StudySeries> series;
     for (std::size_t p = 0; p < plan.points.size(); ++p)
     {
@@ -639,6 +696,8 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
     if (!a.caption.empty() && !by_seed)
       f.caption += " " + a.caption + ".";
     figures.push_back(std::move(f));
+    if (std::optional<Figure> budget = budget_figure(q, qi, plan, a, rows, by_seed))
+      figures.push_back(std::move(*budget));
   }
   const std::string missing = undrawn(draw_figures(figures, out + "/plots"));
   if (!missing.empty())

@@ -37,7 +37,9 @@
 // members complete.  DIR/plots holds the study's figures, drawn when the
 // sweep ends (gnuplot scripts and their data beside the SVG pictures): peak
 // stress, strain at peak and initial modulus, the mean over seeds with its
-// 95 % half-width and every member, against the first varied entry (its
+// 95 % half-width and every member, and the budget of each mean
+// (budget_*.svg: u_seed, u_num, u_input in per cent of it), against the
+// first varied entry (its
 // values when they are numbers, else the ball count of each value's sample
 // when that tells them apart: a sweep over samples), one series per value
 // of the other entries; else against the seed (a seed ensemble) or the

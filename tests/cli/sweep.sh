@@ -72,9 +72,15 @@ assert [p[0] for p in blocks[0]] == [0.2, 0.5], blocks[0]
 assert math.isclose(blocks[0][0][1], mean, rel_tol=1e-10), blocks[0]
 assert all(math.isclose(a, b, rel_tol=1e-10) for a, b in zip(sorted(p[1] for p in blocks[1][:2]), sorted(peaks))), blocks[1]
 assert math.isclose(blocks[2][0][2], t * sd / math.sqrt(2), rel_tol=1e-9), blocks[2]
+# The budget figure's data: u_seed in per cent of the mean at each point
+# with completed members (the refused point has none).
+budget = [[[float(x) for x in l.split(",")] for l in b.strip().splitlines() if not l.startswith("#")]
+          for b in open(d + "/plots/budget_peak_stress.csv").read().split("\n\n\n")]
+assert [p[0] for p in budget[0]] == [0.2, 0.5], budget[0]
+assert math.isclose(budget[0][0][1], 100 * sd / math.sqrt(2) / mean, rel_tol=1e-9), budget[0]
 EOF
 if command -v gnuplot >/dev/null; then
-  for f in peak_stress strain_at_peak initial_modulus; do
+  for f in peak_stress strain_at_peak initial_modulus budget_peak_stress; do
     grep -q "<svg" "$work/a/plots/$f.svg" || fail "the sweep's figure $f.svg was not drawn"
   done
 fi
