@@ -15,7 +15,7 @@ namespace
 /// A number of the record, or NaN where it holds none (null, absent).
 double number_in(const nlohmann::json &j, const char *key)
 {
-  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : nan;
 }
 
 /// Whether two deck values are the same: as numbers to round-off when both
@@ -37,7 +37,7 @@ double calibrated_input_uncertainty(const nlohmann::json &calibration, const std
   {
     if (why)
       *why = reason;
-    return std::nan("");
+    return nan;
   };
   const nlohmann::json &parameters = calibration.at("parameters");
   const nlohmann::json *target = nullptr;
@@ -53,7 +53,7 @@ double calibrated_input_uncertainty(const nlohmann::json &calibration, const std
   std::vector<double> g(parameters.size()), r(parameters.size());
   for (std::size_t j = 0; j < parameters.size(); ++j)
   {
-    g[j] = (slopes[j].is_number() ? slopes[j].get<double>() : std::nan("")) / mean;
+    g[j] = (slopes[j].is_number() ? slopes[j].get<double>() : nan) / mean;
     r[j] = number_in(parameters[j], "relative_standard_error");
     if (!std::isfinite(g[j]) || !std::isfinite(r[j]))
       return none("the record gives no finite slope of " + quantity + " or standard error of parameter '" +
@@ -64,7 +64,7 @@ double calibrated_input_uncertainty(const nlohmann::json &calibration, const std
   for (std::size_t j = 0; j < g.size(); ++j)
     for (std::size_t k = 0; k < g.size(); ++k)
     {
-      double rho = j == k ? 1.0 : std::nan("");
+      double rho = j == k ? 1.0 : nan;
       if (j != k && correlation.is_array() && correlation.size() == g.size() && correlation[j].is_array() &&
           correlation[j].size() == g.size() && correlation[j][k].is_number())
         rho = correlation[j][k].get<double>();
