@@ -117,13 +117,6 @@ double max_after(const Series &s, const std::string &clock, double from, const s
   return out;
 }
 
-std::string num_text(double v)
-{
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 /// gauge_study.csv: for each band, its gauges and its radial strain's error
 /// against all circumference balls, at the end and averaged over the rows
 /// past a tenth of the final circumference strain (thesis Fig. 5.13).
@@ -135,7 +128,7 @@ void write_gauge_study(const std::string &path, const Series &series, const std:
                 {"gauge_thickness", "gauges", "error_at_end_percent", "mean_abs_error_percent"});
   for (std::size_t k = 0; k < study.size(); ++k)
   {
-    const auto band = series.column("radial_strain_gauge_" + num_text(study[k]));
+    const auto band = series.column("radial_strain_gauge_" + format_number(study[k], 6));
     double sum = 0;
     std::size_t n = 0;
     for (std::size_t r = 0; r < all.size(); ++r)
@@ -280,7 +273,7 @@ public:
     if (!spec.gauge_study.empty())
     {
       for (double t : spec.gauge_study)
-        columns.push_back("radial_strain_gauge_" + num_text(t));
+        columns.push_back("radial_strain_gauge_" + format_number(t, 6));
       columns.push_back("radial_strain_circumference");
     }
     if (test_.scheduled())
