@@ -1,13 +1,3 @@
-# demvv_room(NAME SOURCES... LINKS targets...): one room of the application
-# (app/, verify/) as a static library.  Every room is compiled alike: with
-# deal.II's cached flags (deal_ii_setup_target: its include paths, its MPI;
-# without its -g in a Release build), demvv's warnings, and the include
-# root at the repository (and the build folder of app/, where build_info.h
-# and the sources' hash are written).
-# A room links the rooms below it, so its library is placed before theirs
-# on every link line: a symbol a lower room took from a higher one would
-# not resolve.  The layering test (cmake/layering.cmake) holds the includes
-# to the same floors.
 # demvv_unity_build(TARGET): the target's sources compiled in batches of
 # eight, each batch one translation unit, so that the headers every source
 # of a room includes (nlohmann/json, the decks, deal.II's flags) are read
@@ -20,6 +10,16 @@ function(demvv_unity_build name)
   set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
 endfunction()
 
+# demvv_room(NAME SOURCES... LINKS targets...): one room of the application
+# (app/, verify/) as a static library.  Every room is compiled alike: with
+# deal.II's cached flags (deal_ii_setup_target: its include paths, its MPI;
+# without its -g in a Release build), demvv's warnings, and the include
+# root at the repository (and the build folder of app/, where build_info.h
+# and the sources' hash are written).
+# A room links the rooms below it, so its library is placed before theirs
+# on every link line: a symbol a lower room took from a higher one would
+# not resolve.  The layering test (cmake/layering.cmake) holds the includes
+# to the same floors.
 function(demvv_room name)
   cmake_parse_arguments(ROOM "" "" "SOURCES;LINKS" ${ARGN})
   add_library(${name} STATIC ${ROOM_SOURCES})
