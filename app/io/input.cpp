@@ -106,6 +106,11 @@ std::string as_utf8_text(std::string text, const std::string &path, const std::s
   return text;
 }
 
+double json_number(const nlohmann::json &j, const char *key)
+{
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : nan;
+}
+
 nlohmann::json parse_json_input(const std::string &text, const std::string &path, const std::string &what)
 {
   if (json_depth(text) > max_json_depth)

@@ -48,6 +48,10 @@ std::string as_utf8_text(std::string text, const std::string &path, const std::s
 /// error or nesting deeper than max_json_depth.
 nlohmann::json parse_json_input(const std::string &text, const std::string &path, const std::string &what);
 
+/// The number `key` of a JSON object, or NaN where it holds none (the key
+/// absent, null or not a number; `j` not an object).
+double json_number(const nlohmann::json &j, const char *key);
+
 /// Memory this process may use [bytes]: the machine's physical memory, or
 /// the cgroup's limit when one is set and lower.
 double usable_memory_bytes();

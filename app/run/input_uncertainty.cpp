@@ -12,12 +12,6 @@ namespace demvv
 {
 namespace
 {
-/// A number of the record, or NaN where it holds none (null, absent).
-double number_in(const nlohmann::json &j, const char *key)
-{
-  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : nan;
-}
-
 /// Whether two deck values are the same: as numbers to round-off when both
 /// are numbers (a resolved deck may print a fitted value differently), else
 /// as text.
@@ -47,14 +41,14 @@ double calibrated_input_uncertainty(const nlohmann::json &calibration, const std
   if (target == nullptr)
     return none("not a target of the calibration: its sensitivity to the fitted parameters was not measured");
   const nlohmann::json &slopes = target->at("slope_per_ln_parameter");
-  const double mean = number_in(*target, "fitted_mean");
+  const double mean = json_number(*target, "fitted_mean");
   if (!slopes.is_array() || slopes.size() != parameters.size())
     return none("the record gives no slope of " + quantity + " for each fitted parameter");
   std::vector<double> g(parameters.size()), r(parameters.size());
   for (std::size_t j = 0; j < parameters.size(); ++j)
   {
     g[j] = (slopes[j].is_number() ? slopes[j].get<double>() : nan) / mean;
-    r[j] = number_in(parameters[j], "relative_standard_error");
+    r[j] = json_number(parameters[j], "relative_standard_error");
     if (!std::isfinite(g[j]) || !std::isfinite(r[j]))
       return none("the record gives no finite slope of " + quantity + " or standard error of parameter '" +
                   parameters[j].value("name", "") + "'");

@@ -278,11 +278,6 @@ std::string status_word(const std::string &state)
   return state;
 }
 
-double number(const nlohmann::json &j, const char *key)
-{
-  return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : nan;
-}
-
 /// Bond breakage at the peak stress, from the member's series.csv (the row
 /// of the peak), else the final breakage from summary.json.
 double broken_at_peak(const std::string &dir, const nlohmann::json &summary)
@@ -307,8 +302,9 @@ double broken_at_peak(const std::string &dir, const nlohmann::json &summary)
   if (!summary.contains("bonds") || !summary.at("bonds").is_object())
     return nan;
   const nlohmann::json &b = summary.at("bonds");
-  const double installed = number(b, "installed");
-  const double broken = number(b, "broken_tension") + number(b, "broken_shear") + number(b, "broken_displacement");
+  const double installed = json_number(b, "installed");
+  const double broken =
+    json_number(b, "broken_tension") + json_number(b, "broken_shear") + json_number(b, "broken_displacement");
   return installed > 0 ? broken / installed : nan;
 }
 
@@ -358,18 +354,18 @@ SweepRow read_row(const std::string &dir, const Member &m)
     row.message = status.at("fault").value("message", "");
   else
     row.message = status.value("message", "");
-  row.seconds = number(status, "wall_seconds");
+  row.seconds = json_number(status, "wall_seconds");
   if (!std::isfinite(row.seconds))
-    row.seconds = number(summary, "wall_seconds");
+    row.seconds = json_number(summary, "wall_seconds");
   if (row.status != "completed")
     return row;
-  row.peak = number(summary, "peak_stress_pa");
-  row.strain = number(summary, "strain_at_peak");
-  row.modulus = number(summary, "initial_modulus_pa");
-  row.poisson = number(summary, "poisson_ratio");
+  row.peak = json_number(summary, "peak_stress_pa");
+  row.strain = json_number(summary, "strain_at_peak");
+  row.modulus = json_number(summary, "initial_modulus_pa");
+  row.poisson = json_number(summary, "poisson_ratio");
   row.broken = broken_at_peak(dir, summary);
   if (summary.contains("sample") && summary.at("sample").is_object())
-    row.particles = number(summary.at("sample"), "particles");
+    row.particles = json_number(summary.at("sample"), "particles");
   // The budget's parts the run states (a summary without them, or damaged,
   // states none).
   const auto stated = [&](const char *block, const char *field, double StatedUncertainty::*part)
@@ -379,7 +375,7 @@ SweepRow read_row(const std::string &dir, const Member &m)
       const nlohmann::json &u = summary.at("uncertainty").at(block);
       if (u.value("estimated", false))
         for (std::size_t q = 0; q < row.stated.size(); ++q)
-          row.stated[q].*part = number(u.at(budget_quantities[q]), field);
+          row.stated[q].*part = json_number(u.at(budget_quantities[q]), field);
     }
     catch (const nlohmann::json::exception &)
     {
@@ -591,40 +587,42 @@ struct StudyQuantity
   double SweepRow::*value;
 };
 
-/// The uncertainty budget of quantity q's means, part by part in per cent
+/// The uncertainty budget of one quantity's means, part by part in per cent
 /// of the mean at each point: u_seed (the seeds' standard error), u_num and
-/// u_input where the members state them; a part no point has is named in
-/// the caption as not estimated (none at all: no figure).
-std::optional<Figure> budget_figure(const StudyQuantity &q, std::size_t qi, const SweepPlan &plan,
-                                    const StudyAbscissa &a, const std::vector<SweepRow> &rows, bool by_seed)
+/// u_input where the members state them.
+struct BudgetParts
 {
-  const std::size_t per_point = rows.size() / std::max<std::size_t>(plan.points.size(), 1);
-  const std::vector<std::string> parts = {"u_seed (seeds' standard error)", "u_num (time step)",
-                                          "u_input (fitted inputs)"};
-  std::vector<std::vector<double>> x(parts.size()), y(parts.size());
-  for (std::size_t p = 0; p < plan.points.size(); ++p)
+  static constexpr const char *titles[3] = {"u_seed (seeds' standard error)", "u_num (time step)",
+                                            "u_input (fitted inputs)"};
+  std::vector<double> x[3], y[3];
+
+  void add(double at, const EnsembleStatistics &st, const StatedUncertainty &u)
   {
-    std::vector<double> values;
-    for (std::size_t i = p * per_point; i < (p + 1) * per_point; ++i)
-      if (rows[i].status == "completed" && std::isfinite(rows[i].*q.value))
-        values.push_back(rows[i].*q.value);
-    const EnsembleStatistics st = ensemble_statistics(values);
-    const StatedUncertainty u = point_stated(rows, p * per_point, (p + 1) * per_point, qi);
     const double share[3] = {100 * st.se / std::abs(st.mean), 100 * u.num, 100 * u.input};
-    for (std::size_t k = 0; k < parts.size(); ++k)
+    for (int k = 0; k < 3; ++k)
       if (std::isfinite(share[k]))
       {
-        x[k].push_back(by_seed ? double(p + 1) : a.x[p]);
+        x[k].push_back(at);
         y[k].push_back(share[k]);
       }
   }
+};
+
+/// The budget's figure; a part no point has is named in the caption as not
+/// estimated (none at all: no figure).
+std::optional<Figure> budget_figure(const StudyQuantity &q, const StudyAbscissa &a, bool by_seed,
+                                    const BudgetParts &parts)
+{
   std::vector<Curve> curves;
   std::string absent;
-  for (std::size_t k = 0; k < parts.size(); ++k)
-    if (x[k].empty())
-      absent += (absent.empty() ? "" : ", ") + parts[k].substr(0, parts[k].find(' '));
+  for (int k = 0; k < 3; ++k)
+  {
+    const std::string title = BudgetParts::titles[k];
+    if (parts.x[k].empty())
+      absent += (absent.empty() ? "" : ", ") + title.substr(0, title.find(' '));
     else
-      curves.push_back(curve(parts[k], x[k], y[k], CurveStyle::points));
+      curves.push_back(curve(title, parts.x[k], parts.y[k], CurveStyle::points));
+  }
   if (curves.empty())
     return std::nullopt;
   Figure f = make_figure("budget_" + q.name, q.title + ": the uncertainty budget of the means",
@@ -657,6 +655,7 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
   {
     const StudyQuantity &q = quantities[qi];
     std::vector<StudySeries> series;
+    BudgetParts budget;
     for (std::size_t p = 0; p < plan.points.size(); ++p)
     {
       auto s = std::find_if(series.begin(), series.end(), [&](const StudySeries &t) { return t.title == a.series[p]; });
@@ -671,6 +670,7 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
           s->member_y.push_back(rows[i].*q.value);
         }
       const EnsembleStatistics st = ensemble_statistics(values);
+      budget.add(by_seed ? double(p + 1) : a.x[p], st, point_stated(rows, p * per_point, (p + 1) * per_point, qi));
       if (st.n == 0)
         continue;
       const std::vector<double> at =
@@ -696,8 +696,8 @@ void draw_sweep_figures(const std::string &out, const SweepPlan &plan, const Dec
     if (!a.caption.empty() && !by_seed)
       f.caption += " " + a.caption + ".";
     figures.push_back(std::move(f));
-    if (std::optional<Figure> budget = budget_figure(q, qi, plan, a, rows, by_seed))
-      figures.push_back(std::move(*budget));
+    if (std::optional<Figure> f_budget = budget_figure(q, a, by_seed, budget))
+      figures.push_back(std::move(*f_budget));
   }
   const std::string missing = undrawn(draw_figures(figures, out + "/plots"));
   if (!missing.empty())

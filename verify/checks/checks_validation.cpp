@@ -41,6 +41,7 @@
 #include "app/kinds/deck_kinds.h"
 
 #include "app/decks/deck.h"
+#include "app/io/input.h"
 #include "app/io/output.h"
 #include "app/run/input_uncertainty.h"
 #include "app/run/numerical_uncertainty.h"
@@ -146,11 +147,6 @@ const nlohmann::json &calibration(const CheckContext &ctx)
   return done.emplace(key, result).first->second;
 }
 
-double number_at(const nlohmann::json &j, const char *key)
-{
-  return j.contains(key) && j.at(key).is_number() ? j.at(key).get<double>() : std::nan("");
-}
-
 /// The standard uncertainties of one validation comparison (ASME V&V 20) [Pa].
 struct ValidationBudget
 {
@@ -192,7 +188,7 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
   const nlohmann::json &t = c.at("targets").at(0);
   const nlohmann::json &p = c.at("parameters").at(0);
   CheckOutcome out;
-  const double mean = number_at(t, "fitted_mean"), se = number_at(t, "standard_error_of_mean");
+  const double mean = json_number(t, "fitted_mean"), se = json_number(t, "standard_error_of_mean");
   out.metrics.push_back(bound("converged (1) or not (0)", c.value("status", "") == "converged" ? 1 : 0, 1, true,
                               ToleranceClass::D,
                               "the fit must end by meeting its target, not by running out of "
@@ -203,10 +199,10 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
     "calibration: the target is met by construction within the seed ensemble's standard error of the mean (or "
     "the fit's tolerance); it shows the fit worked, not that the model predicts"));
   out.metrics.push_back(bound("relative standard error of the fitted bond strength (seeds and the law's 10 %)",
-                              number_at(p, "relative_standard_error"), 0.25, false, ToleranceClass::D,
+                              json_number(p, "relative_standard_error"), 0.25, false, ToleranceClass::D,
                               "the fit is determined: the peak stress moves with the strength well above the seed "
                               "noise and the law's assumed 10 % scatter"));
-  const double value = number_at(p, "value");
+  const double value = json_number(p, "value");
   std::vector<double> strength, peak, half;
   for (const nlohmann::json &point : c.at("path"))
   {
@@ -229,7 +225,7 @@ CheckOutcome check_table_7_4_calibration(const CheckContext &ctx)
   out.figures.back().x_margins = true;
   out.notes.push_back(
     "bond strength (normal = shear) fitted at 10 C, 0.1 1/s: " + num(value) + " N +- " +
-    num(number_at(p, "standard_error")) + " N (seeds alone: +- " + num(number_at(p, "standard_error_seeds")) +
+    num(json_number(p, "standard_error")) + " N (seeds alone: +- " + num(json_number(p, "standard_error_seeds")) +
     " N), from a start of " + num(strength_start(ctx.quick)) + " N (" +
     num(100 * std::abs(strength_start(ctx.quick) / value - 1)) + " % off) in " +
     std::to_string(c.value("iterations", 0)) + " iterations, " + std::to_string(c.value("evaluations", 0)) +
@@ -404,7 +400,7 @@ CheckOutcome check_table_7_4_validation(const CheckContext &ctx)
   }
   Curve law_curve = curve("law, eq. 4.4 (10.3 MPa (rate_T / 0.1)^0.29)", law_x, law_y, CurveStyle::dashed);
   Curve calibrated = curve("calibration point (10 C, 0.1 1/s)", {compensated(calibration_condition)},
-                           {number_at(t, "fitted_mean")}, CurveStyle::points);
+                           {json_number(t, "fitted_mean")}, CurveStyle::points);
   calibrated.point_type = 5;
   calibrated.y_error = {ensemble_statistics(t.at("by_seed").get<std::vector<double>>()).ci95};
   std::vector<Curve> curves = {law_curve, calibrated};
