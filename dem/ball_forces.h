@@ -57,7 +57,7 @@ struct BallForces
     for (const WallIndex w : active_walls)
     {
       ContactState *kept = walls.history_of(w, p);
-      if (walls.clearance(w, P.position[p]) >= P.radius[p] && !(kept && kept->touching()))
+      if (walls.clear_of(w, P.position[p], P.radius[p]) && !(kept && kept->touching()))
         continue;
       ContactState fresh; // a ball that never touched this wall starts at rest
       ContactState &state = kept ? *kept : fresh;

@@ -79,7 +79,14 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   const auto limit_by_friction = [&](double normal_force)
   {
     const double limit = params.friction * std::max(normal_force, 0.0);
-    const double magnitude = shear.norm();
+    // Most contacts stick: a shear whose square is clearly below the
+    // limit's (by far more than the round-off of either square, which is
+    // relative while the limit's square is a normal number) is inside the
+    // cone without the square root; the root decides the rest, as before.
+    const double squared = shear.squaredNorm(), limit_squared = limit * limit;
+    if (limit_squared > 1e-290 && squared < (1.0 - 1e-12) * limit_squared)
+      return;
+    const double magnitude = std::sqrt(squared);
     if (magnitude > limit)
     {
       const Vec3 limited = magnitude > 0 ? Vec3(shear * (limit / magnitude)) : Vec3::Zero();

@@ -163,10 +163,11 @@ double estimated_memory_bytes(double particles, int walls)
 
 double least_steps(const ParticleStore &particles, const SimulationSettings &settings, double duration)
 {
-  const double largest_step = settings.fixed_time_step > 0
-                                ? settings.fixed_time_step
-                                : settings.time_step_safety *
-                                    critical_step(damped_row_bound(lone_contact_bound(particles), settings.local_damping));
+  const double largest_step =
+    settings.fixed_time_step > 0
+      ? settings.fixed_time_step
+      : settings.time_step_safety *
+          critical_step(damped_row_bound(lone_contact_bound(particles), settings.local_damping));
   return largest_step > 0 ? duration / largest_step : infinity;
 }
 
@@ -259,11 +260,9 @@ void Simulation::choose_time_step()
   }
 }
 
-void Simulation::integrate(bool measure_kinetic)
+template <bool damped, bool weighted, bool kinetic>
+Simulation::BallAdvance Simulation::advance_balls()
 {
-  if (!forces_current_)
-    compute_forces();
-  forces_current_ = false;
   const Index n = particles_.size();
   const double dt = dt_;
   // Velocities live at half steps; with a varying step the kick spans the
@@ -296,24 +295,33 @@ void Simulation::integrate(bool measure_kinetic)
     // constraint does.
     const double free_v = P.holds_velocity(p) ? 0.0 : 1.0, free_w = P.holds_spin(p) ? 0.0 : 1.0;
     const double im = P.inv_mass[p] * kick, ii = P.inv_inertia[p] * kick, m = P.mass[p];
-    double power = wall_power_[p], damping = 0, body = 0, held = 0, kinetic = 0, speed2 = 0, spin2 = 0;
+    double power = wall_power_[p], damping = 0, body = 0, held = 0, energy = 0, speed2 = 0, spin2 = 0;
     for (int k = 0; k < 3; ++k)
     {
-      // PFC local damping: the component loses alpha |F| against the sign of
-      // its velocity, nothing at zero velocity (branch-free selects).
       const double vo = v[b + k], wo = w[b + k];
-      const double fd = alpha * std::abs(f[b + k]), td = alpha * std::abs(t[b + k]);
-      const double f_damp = vo > 0 ? fd : (vo < 0 ? -fd : 0.0);
-      const double t_damp = wo > 0 ? td : (wo < 0 ? -td : 0.0);
+      // PFC local damping: the component loses alpha |F| against the sign of
+      // its velocity, nothing at zero velocity.  Two one-sided selects
+      // compile to masks, not branches (a velocity's sign is a coin toss for
+      // the branch predictor).  Undamped, f_damp = 0 and its terms vanish.
+      double f_damp = 0, t_damp = 0;
+      if constexpr (damped)
+      {
+        const double fd = alpha * std::abs(f[b + k]), td = alpha * std::abs(t[b + k]);
+        f_damp = (vo > 0 ? fd : 0.0) - (vo < 0 ? fd : 0.0);
+        t_damp = (wo > 0 ? td : 0.0) - (wo < 0 ? td : 0.0);
+      }
       const double vn = vo + (f[b + k] - f_damp) * im;
       const double wn = wo + (t[b + k] - t_damp) * ii;
       const double vm = 0.5 * (vo + vn), wm = 0.5 * (wo + wn);
-      damping += free_v * f_damp * vm + free_w * t_damp * wm;
-      body += free_v * m * gravity[k] * vm;
+      if constexpr (damped)
+        damping += free_v * f_damp * vm + free_w * t_damp * wm;
+      if constexpr (weighted)
+        body += free_v * m * gravity[k] * vm;
       // A held ball's constraint does the work the resultant would have done.
-      held += (1.0 - free_v) * (f[b + k] - m * gravity[k]) * vo + (1.0 - free_w) * t[b + k] * wo;
-      if (measure_kinetic)
-        kinetic += 0.5 * m * vo * (first_step ? vo : vn) + 0.5 * P.inertia[p] * wo * (first_step ? wo : wn);
+      const double resultant = weighted ? f[b + k] - m * gravity[k] : f[b + k];
+      held += (1.0 - free_v) * resultant * vo + (1.0 - free_w) * t[b + k] * wo;
+      if constexpr (kinetic)
+        energy += 0.5 * m * vo * (first_step ? vo : vn) + 0.5 * P.inertia[p] * wo * (first_step ? wo : wn);
       v[b + k] = vn;
       w[b + k] = wn;
       x[b + k] += vn * dt;
@@ -322,21 +330,46 @@ void Simulation::integrate(bool measure_kinetic)
     }
     power -= held;
     e.boundary += power * kick;
-    e.damping += damping * kick;
-    e.body += body * kick;
-    if (measure_kinetic)
-      e.kinetic = kinetic;
+    if constexpr (damped)
+      e.damping += damping * kick;
+    if constexpr (weighted)
+      e.body += body * kick;
+    if constexpr (kinetic)
+      e.kinetic = energy;
     const double half_radius = 0.5 * P.radius[p];
     if (!(speed2 * dt * dt <= half_radius * half_radius) || !std::isfinite(spin2))
       first_bad = std::min(first_bad, p);
     moved = moved || neighbors_.moved_too_far(p, P.position[p]);
   }
+  return {first_bad, moved};
+}
+
+void Simulation::integrate(bool measure_kinetic)
+{
+  if (!forces_current_)
+    compute_forces();
+  forces_current_ = false;
+  // The ball loop is compiled for each combination of three switches that
+  // hold for the whole step, so that a step without damping, gravity or a
+  // kinetic-energy measure does none of the arithmetic whose terms are
+  // zero (the same values to the bit: those terms add exact zeros).
+  using Loop = BallAdvance (Simulation::*)();
+  static constexpr Loop loops[2][2][2] = {
+    {{&Simulation::advance_balls<false, false, false>, &Simulation::advance_balls<false, false, true>},
+     {&Simulation::advance_balls<false, true, false>, &Simulation::advance_balls<false, true, true>}},
+    {{&Simulation::advance_balls<true, false, false>, &Simulation::advance_balls<true, false, true>},
+     {&Simulation::advance_balls<true, true, false>, &Simulation::advance_balls<true, true, true>}}};
+  const bool damped = settings_.local_damping != 0, weighted = !settings_.gravity.isZero(0);
+  const BallAdvance advanced = (this->*loops[damped][weighted][measure_kinetic])();
+  const Index n = particles_.size(), first_bad = advanced.first_bad;
+  const double dt = dt_;
+  const ParticleStore &P = particles_;
 
   walls_.advance(dt);
   time_ += dt;
   ++step_;
   dt_prev_ = dt;
-  rebuild_requested_ = rebuild_requested_ || moved;
+  rebuild_requested_ = rebuild_requested_ || advanced.moved;
   if (first_bad < n)
   {
     std::ostringstream msg;
@@ -402,7 +435,8 @@ void Simulation::check_energy_ledger(const LedgerLimits &limits) const
   const EnergyLedger e = energy();
   const double held = std::max(0.0, e.kinetic) + e.strain;
   const double supplied = e.initial + std::max(0.0, e.boundary_work) + std::max(0.0, e.body_work);
-  const auto most_kinetic = [&] {
+  const auto most_kinetic = [&]
+  {
     const auto it = std::max_element(ball_energy_.begin(), ball_energy_.end(),
                                      [](const BallEnergy &a, const BallEnergy &b) { return a.kinetic < b.kinetic; });
     return it == ball_energy_.end() ? Index(-1) : static_cast<Index>(it - ball_energy_.begin());
@@ -426,7 +460,8 @@ void Simulation::check_energy_ledger(const LedgerLimits &limits) const
            "mode, or its work cannot be booked); lower motion/time step safety or motion/fixed time step";
     fail(static_cast<Index>(most - ball_energy_.begin()), msg.str());
   }
-  if (step_ >= limits.residual_from_step && settings_.local_damping == 0 && model_->books_every_dissipation() && std::abs(e.residual()) > limits.residual * supplied)
+  if (step_ >= limits.residual_from_step && settings_.local_damping == 0 && model_->books_every_dissipation() &&
+      std::abs(e.residual()) > limits.residual * supplied)
   {
     msg << "energy balance broken: the residual " << e.residual() << " J is more than " << limits.residual
         << " times the energy supplied " << supplied

@@ -276,6 +276,17 @@ public:
   std::size_t bonds_broken(BreakMode mode) const;
 
 private:
+  /// What the ball loop of a step found: the first ball that moved more
+  /// than half its radius or spun to a non-finite rate (n if none), and
+  /// whether any moved far enough to need a neighbour rebuild.
+  struct BallAdvance
+  {
+    Index first_bad;
+    bool moved;
+  };
+  /// The kick and drift of every ball with its energy ledger (eq. 3.7-3.9).
+  template <bool damped, bool weighted, bool kinetic>
+  BallAdvance advance_balls();
   void record_breaks();
   void choose_time_step();
   [[noreturn]] void fail(Index particle, const std::string &what) const;

@@ -39,8 +39,7 @@ namespace
 /// Outward radial unit vector and radial distance of x from a cylinder axis.
 std::pair<Vec3, double> radial_of(const Wall &c, const Vec3 &x)
 {
-  const Vec3 d = x - c.point;
-  const Vec3 radial = d - d.dot(c.direction) * c.direction;
+  const Vec3 radial = radial_offset(c, x);
   const double rho = radial.norm();
   // On the axis every direction is radial; pick one that is normal to it.
   const Vec3 outward = rho > 0 ? Vec3(radial / rho) : c.direction.unitOrthogonal();
@@ -48,7 +47,8 @@ std::pair<Vec3, double> radial_of(const Wall &c, const Vec3 &x)
 }
 } // namespace
 
-double WallSet::cylinder_clearance(const Wall &c, const Vec3 &x) { return c.radius - radial_of(c, x).second; }
+// The radial distance alone (no unit vector), the same rho as radial_of's.
+double WallSet::cylinder_clearance(const Wall &c, const Vec3 &x) { return c.radius - radial_offset(c, x).norm(); }
 
 ContactGeometry WallSet::geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v, const Vec3 &omega) const
 {
