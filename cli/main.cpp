@@ -128,9 +128,9 @@ int main(int argc, char **argv)
   run->add_option("--set", overrides, "Override a deck entry: SECTION/KEY=VALUE (repeatable)");
   run
     ->add_option("--threads", threads,
-                 "OpenMP threads, at most: a DEM run starts on N and moves to fewer while fewer run faster (a busy "
-                 "machine); results never depend on it (default: OMP_NUM_THREADS, kept exactly, else the cores no "
-                 "other process is busy on, then up to every core)")
+                 "OpenMP threads, at most: a DEM run starts on N or the idle cores if fewer, and moves between one and "
+                 "N as the load does (a busy machine); results never depend on it (default: OMP_NUM_THREADS, kept "
+                 "exactly, else the cores no other process is busy on, then up to every core)")
     ->check(whole_number)
     ->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "No progress line (it is shown only when standard output is a terminal)");

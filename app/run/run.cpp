@@ -525,9 +525,17 @@ int apply_threads(const RunOptions &options)
 {
   // More threads than the machine has cores never run faster, and a few
   // hundred exhaust libgomp's address space under a memory cap: the count
-  // asked for is clamped to the cores (results do not depend on it).
+  // asked for is clamped to the cores (results do not depend on it).  A
+  // count with a ceiling (--threads N, a sweep's share) is the most a run
+  // uses: it starts on the cores no other process is running on, as the
+  // default does, and the governor tries more as they free up (started on
+  // both cores beside a busy process, a short run spent its first seconds
+  // at half speed before the governor's first trial).
   if (options.threads > 0)
-    omp_set_num_threads(std::min(options.threads, omp_get_num_procs()));
+  {
+    const int asked = std::min(options.threads, omp_get_num_procs());
+    omp_set_num_threads(threads_are_ours(options) ? std::min(asked, idle_cores()) : asked);
+  }
   else if (threads_are_ours(options))
     omp_set_num_threads(idle_cores());
   return omp_get_max_threads();

@@ -278,7 +278,8 @@ private:
 int idle_cores();
 
 /// Sets and returns the OpenMP threads: options.threads (at most the
-/// machine's cores), else OMP_NUM_THREADS when set, else idle_cores().
+/// machine's cores; with a ceiling, at most idle_cores() too), else
+/// OMP_NUM_THREADS when set, else idle_cores().
 int apply_threads(const RunOptions &options);
 
 /// Whether a run may change its thread count while it goes (results never

@@ -745,7 +745,7 @@ void claim_sweep_directory(const std::string &dir, bool replace, const std::vect
 }
 
 /// Each member's threads (RunOptions::threads and most_threads), applied:
-/// --threads N: each member starts on N and may use up to N; else
+/// --threads N: each member starts on N (fewer if fewer cores are idle) and may use up to N; else
 /// OMP_NUM_THREADS, kept exactly; else demvv's choice: one rank starts on
 /// the idle cores and may use them all, several share the cores out.  A
 /// DEM member's count is governed during its run, as a run's is.

@@ -429,7 +429,7 @@ TEST_CASE("a count with a ceiling (--threads, a sweep's share) is governed up to
   // A ceiling beyond the machine is its cores (--threads 1024 runs on them).
   share.most_threads = omp_get_num_procs() + 1000;
   CHECK(demvv::thread_ceiling(share) == omp_get_num_procs());
-  // demvv verify --threads N: each run of a check starts on N, never more.
+  // demvv verify --threads N: each run of a check may use N threads, never more.
   const demvv::RunOptions check = demvv::run_options(demvv::CheckContext{"", true, 3, {}});
   CHECK(check.threads == 3);
   CHECK(check.most_threads == 3);
