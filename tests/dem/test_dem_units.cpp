@@ -2,6 +2,8 @@
 #include "tests/dem/two_body.h"
 
 #include "dem/bonds.h"
+#include "dem/contact_resolve.h"
+#include "dem/law_linear.h"
 #include "dem/measure.h"
 #include "dem/neighbors.h"
 #include "dem/protocol_uniaxial.h"
@@ -9,6 +11,7 @@
 #include "dem/spatial_bands.h"
 #include "dem/spatial_order.h"
 #include "dem/stability.h"
+#include "dem/walls.h"
 
 #include <catch2/catch.hpp>
 #include <gsl/gsl_cdf.h>
@@ -52,6 +55,93 @@ TEST_CASE("shear force rotation keeps magnitude and follows the plane", "[dem][l
   const Vec3 twisted = dem::rotate_with_contact_plane(f, n0, n0, 1e-3);
   const Vec3 exact = Eigen::AngleAxisd(1e-3, n0) * f;
   CHECK((twisted - exact).norm() < 1e-9 * f.norm());
+}
+
+namespace
+{
+/// The shear force a new linear contact (normal along z, overlap 1e-6 m,
+/// kn 1e6 N/m: F_n = 1 N; ks dt = 0.1 N s/m) carries after one step whose
+/// tangential velocity difference is u, at friction mu.
+Vec3 one_step_shear(const Vec3 &u, double mu, double overlap = 1e-6)
+{
+  const dem::ContactParams params{1e6, 1e5, mu};
+  const dem::ContactGeometry g{Vec3::UnitZ(), overlap, u, Vec3::Zero(), Vec3::Zero(), 1e-3, 1e-3};
+  bool bonded = false;
+  dem::ContactState state;
+  dem::LinearLaw::History none;
+  return dem::resolve_contact(dem::LinearLaw{}, params, bonded, dem::ContactBond{}, state, none, g, 1e-6).shear;
+}
+} // namespace
+
+TEST_CASE("the Coulomb limit decides slip as |F_s| > mu F_n does, to the last bit at the cone's edge", "[dem][law]")
+{
+  // The resolver skips the square root when |F_s|^2 is below (mu F_n)^2 by
+  // a relative 1e-12; every trial here is as close to the cone as the
+  // offsets say (whole ulps around the margin and the edge), in 64
+  // directions, and the result must be the rule's: the trial itself (the
+  // shear at friction 1e300) inside the cone, scaled onto it outside.
+  const double ulp = std::ldexp(1.0, -52);
+  std::vector<double> offsets{-1e-6, -1e-11, -5e-13, 1e-13, 1e-9, 1e-6};
+  for (int k = -6; k <= 6; ++k)
+  {
+    offsets.push_back(k * ulp);
+    offsets.push_back(-1e-12 + k * ulp);
+  }
+  std::size_t inside = 0, outside = 0;
+  for (const double overlap : {1e-6, 1e-166}) // F_n 1 N, and a limit whose square is subnormal
+    for (int d = 0; d < 64; ++d)
+    {
+      const double a = 2 * dem::pi * d / 64;
+      const double limit = 0.5 * (1e6 * overlap);
+      for (const double offset : offsets)
+      {
+        const Vec3 u = (limit * (1 + offset) / 0.1) * Vec3(std::cos(a), std::sin(a), 0);
+        const Vec3 trial = one_step_shear(u, 1e300, overlap);
+        const double magnitude = trial.norm();
+        const Vec3 expected = magnitude > limit ? Vec3(trial * (limit / magnitude)) : trial;
+        const Vec3 got = one_step_shear(u, 0.5, overlap);
+        CHECK(got.x() == expected.x());
+        CHECK(got.y() == expected.y());
+        CHECK(got.z() == expected.z());
+        ++(magnitude > limit ? outside : inside);
+      }
+    }
+  // Both sides of the edge were tried.
+  CHECK(inside > 500);
+  CHECK(outside > 500);
+}
+
+TEST_CASE("a ball is clear of a cylinder exactly when its clearance is at least its radius", "[dem][walls]")
+{
+  // clear_of answers balls far inside without the square root; near the
+  // wall, and for a ball nearly as wide as the cylinder, the clearance
+  // decides.  Centres at whole ulps around R - r, in 64 directions.
+  dem::WallSet walls;
+  dem::Wall c;
+  c.shape = dem::WallShape::cylinder;
+  c.point = Vec3(0.001, -0.002, 0.5);
+  c.direction = Vec3(0.1, 0.2, 1.0);
+  c.radius = 0.0165;
+  const dem::WallIndex w = walls.add(c);
+  const Vec3 axis = walls[w].direction, across = axis.unitOrthogonal(), third = axis.cross(across);
+  const double ulp = std::ldexp(1.0, -52);
+  std::size_t clear = 0, touching = 0;
+  for (const double r : {0.885e-3, 0.0165 * (1 - 1e-7)})
+    for (int d = 0; d < 64; ++d)
+    {
+      const double a = 2 * dem::pi * d / 64;
+      for (const double offset : {-1e-3, -3e-9, -2e-9, -1e-9, -1e-12, 0.0, 1e-12, 1e-9})
+        for (int k = -4; k <= 4; ++k)
+        {
+          const double rho = (c.radius - r) * (1 + offset + k * ulp);
+          const Vec3 x = c.point + 0.01 * axis + rho * (std::cos(a) * across + std::sin(a) * third);
+          const bool exact = walls.clearance(w, x) >= r;
+          CHECK(walls.clear_of(w, x, r) == exact);
+          ++(exact ? clear : touching);
+        }
+    }
+  CHECK(clear > 1000);
+  CHECK(touching > 500);
 }
 
 TEST_CASE("linear law closed forms are consistent", "[dem][law]")
