@@ -551,7 +551,8 @@ ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<d
     now_ = [start = std::chrono::steady_clock::now()]
     { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   begin_window();
-  next_trial_ = window_start_ + trial_spacing_;
+  constexpr double first_trial_up = 0.5; // s, for a run started below its ceiling
+  next_trial_ = window_start_ + (current_ < most_ ? first_trial_up : trial_spacing_);
 }
 
 nlohmann::json ThreadGovernor::to_json() const

@@ -302,6 +302,11 @@ int thread_ceiling(const RunOptions &options);
 /// of wall time (a trial's half the steps, in case it runs twice as slow);
 /// after a trial that changed nothing the next comes twice as late (2 s at
 /// first, at most 32 s), so on an idle machine trials cost well under 1 %.
+/// A run that starts below its ceiling (the load at its start held it back)
+/// has its first trial of one more thread after 0.5 s: a load that comes
+/// and goes (half a core) can hold back the start of a run that two
+/// threads serve better, and a short run would otherwise spend its first
+/// 2 s on one.
 class ThreadGovernor
 {
 public:

@@ -513,9 +513,25 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
   {
     Machine m;
     demvv::ThreadGovernor g(1, 2, true, [&] { return m.clock; });
-    run(m, g, 3);
+    run(m, g, 1); // the first trial of one more thread comes after 0.5 s
     CHECK(g.threads() == 2);
     CHECK(g.changes() == 1);
+    run(m, g, 60);
+    CHECK(g.threads() == 2);
+  }
+  SECTION("a run that started on one core beside a busy process keeps it, its trials of two costing little")
+  {
+    Machine m;
+    m.busy_at = 0;
+    demvv::ThreadGovernor g(1, 2, true, [&] { return m.clock; });
+    run(m, g, 120);
+    CHECK(g.threads() == 1);
+    CHECK(g.changes() == 0);
+    // A trial is half a 0.2 s window of steps taken at 3 ms instead of 1 ms
+    // (0.3 s), the first at 0.5 s, each next after 4, 8, 16, 32, 32 s: six
+    // in 120 s, 1.8 s on two threads (the bound allows eight).
+    CHECK(m.fewer_seconds > 120 - 8 * 0.3);
+    CHECK(m.fewer_seconds < 120 - 0.3);
   }
   SECTION("a count the user fixed is never changed")
   {
