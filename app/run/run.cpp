@@ -551,8 +551,11 @@ ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<d
     now_ = [start = std::chrono::steady_clock::now()]
     { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   begin_window();
-  constexpr double first_trial_up = 0.5; // s, for a run started below its ceiling
-  next_trial_ = window_start_ + (current_ < most_ ? first_trial_up : trial_spacing_);
+  // A run started below its ceiling (the load held it back) first tries one
+  // more thread, and soon.
+  constexpr double first_trial_up = 0.5; // s
+  try_fewer_ = current_ == most_;
+  next_trial_ = window_start_ + (try_fewer_ ? trial_spacing_ : first_trial_up);
 }
 
 nlohmann::json ThreadGovernor::to_json() const

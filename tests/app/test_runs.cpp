@@ -519,6 +519,18 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
     run(m, g, 60);
     CHECK(g.threads() == 2);
   }
+  SECTION("a run that started below its ceiling tries one more thread first")
+  {
+    Machine m;
+    omp_set_num_threads(3);
+    demvv::ThreadGovernor g(2, 3, true, [&] { return m.clock; });
+    while (m.clock < 0.9 && g.threads() == 2)
+    {
+      m.clock += 1e-3;
+      g.after_step();
+    }
+    CHECK(g.threads() == 3); // the trial, within 0.9 s
+  }
   SECTION("a run that started on one core beside a busy process keeps it, its trials of two costing little")
   {
     Machine m;
