@@ -91,7 +91,7 @@ public:
   {
     const Wall &wall = walls_[w];
     if (wall.shape == WallShape::plane)
-      return (x - wall.point).dot(wall.direction) >= r;
+      return clearance(w, x) >= r;
     const double inside = wall.radius - r;
     if (inside > 1e-6 * wall.radius && radial_offset(wall, x).squaredNorm() < (1.0 - 2e-9) * (inside * inside))
       return true;
