@@ -576,9 +576,24 @@ void ThreadGovernor::use(int threads) { omp_set_num_threads(threads); }
 
 void ThreadGovernor::after_step()
 {
-  if (!ours_ || most_ == 1 || ++steps_ < window_steps_) // no trials where only one count is allowed
+  if (!ours_ || most_ == 1) // no trials where only one count is allowed
     return;
-  constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32;
+  ++steps_;
+  // A trial whose time already exceeds what its whole window may take to
+  // win cannot win any more (its time per step only grows with the time
+  // already spent): it ends here, so that a count which runs many times
+  // slower (two threads beside a load that holds one core) costs at most
+  // that much, not its whole window of steps.
+  if (phase_ == Phase::trial && steps_ < window_steps_)
+    if (const double now = now_(); now - window_start_ > trial_deadline_)
+    {
+      use(current_);
+      window_steps_ = std::clamp(long(window_seconds / settled_per_step_), 4L, 100000L);
+      settle(now, false);
+      return;
+    }
+  if (steps_ < window_steps_)
+    return;
   const double end = now_();
   const double per_step = std::max((end - window_start_) / double(steps_), 1e-9);
   window_steps_ = std::clamp(long(window_seconds / per_step), 4L, 100000L);
@@ -595,36 +610,44 @@ void ThreadGovernor::after_step()
       trial_ = try_fewer_ ? current_ - 1 : current_ + 1;
       use(trial_);
       window_steps_ = std::max(4L, window_steps_ / 2); // 0.2 s even if the trial runs twice as slow
+      trial_deadline_ = (1 - gain) * settled_per_step_ * double(window_steps_);
       phase_ = Phase::trial;
     }
+    begin_window();
     break;
   case Phase::trial:
     trial_per_step_ = per_step;
     use(current_);
     window_steps_ = std::clamp(long(window_seconds / settled_per_step_), 4L, 100000L);
     phase_ = Phase::confirm;
+    begin_window();
     break;
   case Phase::confirm:
     // The trial against the better of the windows on either side of it, so
     // that one window slowed by something else does not decide.
-    if (trial_per_step_ < (1 - gain) * std::min(settled_per_step_, per_step))
-    {
-      try_fewer_ = trial_ < current_;
-      current_ = trial_;
-      use(current_);
-      ++changes_;
-      trial_spacing_ = 2;
-    }
-    else
-    {
-      try_fewer_ = !try_fewer_;
-      trial_spacing_ = std::min(2 * trial_spacing_, longest_spacing);
-    }
+    settle(end, trial_per_step_ < (1 - gain) * std::min(settled_per_step_, per_step));
     settled_per_step_ = per_step;
-    next_trial_ = end + trial_spacing_;
-    phase_ = Phase::settled;
     break;
   }
+}
+
+void ThreadGovernor::settle(double end, bool trial_won)
+{
+  if (trial_won)
+  {
+    try_fewer_ = trial_ < current_;
+    current_ = trial_;
+    use(current_);
+    ++changes_;
+    trial_spacing_ = 2;
+  }
+  else
+  {
+    try_fewer_ = !try_fewer_;
+    trial_spacing_ = std::min(2 * trial_spacing_, longest_spacing);
+  }
+  next_trial_ = end + trial_spacing_;
+  phase_ = Phase::settled;
   begin_window();
 }
 } // namespace demvv

@@ -302,6 +302,11 @@ int thread_ceiling(const RunOptions &options);
 /// of wall time (a trial's half the steps, in case it runs twice as slow);
 /// after a trial that changed nothing the next comes twice as late (2 s at
 /// first, at most 32 s), so on an idle machine trials cost well under 1 %.
+/// A trial ends early once its time exceeds what its whole window may take
+/// to win (90 % of the window before it, per step): it can no longer win,
+/// so this decides nothing differently, but a count that runs many times
+/// slower (two threads while a load holds one of two cores) costs at most
+/// about 0.1 s a trial instead of its whole window of steps.
 /// A run that starts below its ceiling (the load at its start held it back)
 /// has its first trial of one more thread after 0.5 s: a load that comes
 /// and goes (half a core) can hold back the start of a run that two
@@ -333,8 +338,13 @@ private:
   };
   void begin_window();
   void use(int threads);
+  /// Ends a trial (at time `end` [s]): its count kept if it won, else the
+  /// next trial comes twice as late.
+  void settle(double end, bool trial_won);
+  static constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32; // s, 1, s
   Phase phase_ = Phase::settled;
   double trial_per_step_ = 0; ///< s, at trial_
+  double trial_deadline_ = 0; ///< s, the longest a trial's window may take and still win
   std::function<double()> now_;
   int most_, current_, trial_ = 0, changes_ = 0;
   bool ours_;                   ///< governed: the count is demvv's to change, up to most_
