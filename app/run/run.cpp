@@ -609,7 +609,6 @@ void ThreadGovernor::after_step()
         try_fewer_ = true;
       trial_ = try_fewer_ ? current_ - 1 : current_ + 1;
       use(trial_);
-      window_steps_ = std::max(4L, window_steps_ / 2); // 0.2 s even if the trial runs twice as slow
       trial_deadline_ = (1 - gain) * settled_per_step_ * double(window_steps_);
       phase_ = Phase::trial;
     }

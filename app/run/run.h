@@ -299,14 +299,16 @@ int thread_ceiling(const RunOptions &options);
 /// given up, one more) and keeps that count if it ran faster by 10 % than
 /// the better of the windows just before and just after it (one window
 /// slowed by something else does not decide).  A window lasts about 0.2 s
-/// of wall time (a trial's half the steps, in case it runs twice as slow);
-/// after a trial that changed nothing the next comes twice as late (2 s at
-/// first, at most 32 s), so on an idle machine trials cost well under 1 %.
-/// A trial ends early once its time exceeds what its whole window may take
-/// to win (90 % of the window before it, per step): it can no longer win,
-/// so this decides nothing differently, but a count that runs many times
-/// slower (two threads while a load holds one of two cores) costs at most
-/// about 0.1 s a trial instead of its whole window of steps.
+/// of wall time, a trial as many steps as the window before it; after a
+/// trial that changed nothing the next comes twice as late (2 s at first,
+/// at most 32 s), so on an idle machine trials cost well under 1 %.  A
+/// trial ends early once its time exceeds what its whole window may take
+/// to win (90 % of the window before it): it can no longer win, so this
+/// decides nothing differently, but a count that runs many times slower
+/// (two threads while a load holds one of two cores) costs at most about
+/// 0.2 s a trial instead of its whole window of steps.  The trial is that
+/// long so that a load that comes and goes (a core busy 50 ms of every
+/// 100) is seen at both its phases, not at one of them.
 /// A run that starts below its ceiling (the load at its start held it back)
 /// has its first trial of one more thread after 0.5 s: a load that comes
 /// and goes (half a core) can hold back the start of a run that two

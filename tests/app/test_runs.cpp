@@ -539,13 +539,13 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
     run(m, g, 120);
     CHECK(g.threads() == 1);
     CHECK(g.changes() == 0);
-    // A trial is half a 0.2 s window of steps (100 at 1 ms), taken at 3 ms:
-    // 0.3 s if it ran them all, but it ends once past 0.09 s (90 % of the
-    // 0.1 s its steps took on one thread: it can no longer win), at 31
-    // steps, 0.093 s.  The first at 0.5 s, each next after 4, 8, 16, 32, 32
-    // s: six in 120 s, 0.56 s on two threads (the bound allows eight of
-    // 0.1 s; whole trials would take 1.8 s).
-    CHECK(m.fewer_seconds > 120 - 8 * 0.1);
+    // A trial is the 0.2 s window's steps (200 at 1 ms), taken at 3 ms:
+    // 0.6 s if it ran them all, but it ends once past 0.18 s (90 % of the
+    // 0.2 s its steps took on one thread: it can no longer win), at 61
+    // steps, 0.183 s.  The first at 0.5 s, each next after 4, 8, 16, 32, 32
+    // s: six in 120 s, 1.1 s on two threads (the bound allows eight of
+    // 0.19 s; whole trials would take 3.6 s).
+    CHECK(m.fewer_seconds > 120 - 8 * 0.19);
     CHECK(m.fewer_seconds < 120 - 0.3);
   }
   SECTION("a count the user fixed is never changed")
