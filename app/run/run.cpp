@@ -580,10 +580,12 @@ void ThreadGovernor::after_step()
     return;
   ++steps_;
   // A trial whose time already exceeds what its whole window may take to
-  // win cannot win any more (its time per step only grows with the time
-  // already spent): it ends here, so that a count which runs many times
-  // slower (two threads beside a load that holds one core) costs at most
-  // that much, not its whole window of steps.
+  // win cannot win any more: its time per step over the window will be at
+  // least the time spent so far over the window's steps, above 90 % of the
+  // window before it and so of the better of that and the one after.  It
+  // ends here, so that a count which runs many times slower (two threads
+  // beside a load that holds one core) costs at most that much, not its
+  // whole window of steps.
   if (phase_ == Phase::trial && steps_ < window_steps_)
     if (const double now = now_(); now - window_start_ > trial_deadline_)
     {
