@@ -574,6 +574,11 @@ void ThreadGovernor::begin_window()
 
 void ThreadGovernor::use(int threads) { omp_set_num_threads(threads); }
 
+long ThreadGovernor::steps_in_window(double per_step)
+{
+  return std::clamp(long(window_seconds / per_step), 4L, 100000L);
+}
+
 void ThreadGovernor::after_step()
 {
   if (!ours_ || most_ == 1) // no trials where only one count is allowed
@@ -590,7 +595,7 @@ void ThreadGovernor::after_step()
     if (const double now = now_(); now - window_start_ > trial_deadline_)
     {
       use(current_);
-      window_steps_ = std::clamp(long(window_seconds / settled_per_step_), 4L, 100000L);
+      window_steps_ = steps_in_window(settled_per_step_);
       settle(now, false);
       return;
     }
@@ -598,7 +603,7 @@ void ThreadGovernor::after_step()
     return;
   const double end = now_();
   const double per_step = std::max((end - window_start_) / double(steps_), 1e-9);
-  window_steps_ = std::clamp(long(window_seconds / per_step), 4L, 100000L);
+  window_steps_ = steps_in_window(per_step);
   switch (phase_)
   {
   case Phase::settled:
@@ -619,7 +624,7 @@ void ThreadGovernor::after_step()
   case Phase::trial:
     trial_per_step_ = per_step;
     use(current_);
-    window_steps_ = std::clamp(long(window_seconds / settled_per_step_), 4L, 100000L);
+    window_steps_ = steps_in_window(settled_per_step_);
     phase_ = Phase::confirm;
     begin_window();
     break;

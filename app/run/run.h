@@ -340,6 +340,8 @@ private:
   };
   void begin_window();
   void use(int threads);
+  /// Steps of a window of about window_seconds at `per_step` [s].
+  static long steps_in_window(double per_step);
   /// Ends a trial (at time `end` [s]): its count kept if it won, else the
   /// next trial comes twice as late.
   void settle(double end, bool trial_won);
