@@ -18,6 +18,8 @@
   identical_work.py liggghts LOG LABEL
       Prints one result line: label, particle-steps/s, threads or ranks, and
       the physics at the end (ball-ball contacts, top-plane stress [Pa]).
+  identical_work.py build RUN_DIR
+      Prints the build that made a demvv run directory (git SHA, engine flags).
   identical_work.py table RESULTS
       Prints the table of a results file (lines the two commands above wrote)
       and each round's demvv / LIGGGHTS ratios, and checks that every run did
@@ -170,6 +172,11 @@ def demvv_line(run_dir, label):
            abs(top) / (math.pi * radius * radius)))
 
 
+def build_line(run_dir):
+    p = json.load(open(run_dir + "/summary.json"))["provenance"]
+    print("demvv %s (%s)" % (p["git_sha"], p["dem_flags"]))
+
+
 def liggghts_line(log, label):
     text = open(log).read()
     loop = re.findall(r"Loop time of ([0-9.e+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms", text)
@@ -215,6 +222,8 @@ if __name__ == "__main__":
         write(sys.argv[2], sys.argv[3], int(sys.argv[4]))
     elif cmd == "demvv" and len(sys.argv) == 4:
         demvv_line(sys.argv[2], sys.argv[3])
+    elif cmd == "build" and len(sys.argv) == 3:
+        build_line(sys.argv[2])
     elif cmd == "liggghts" and len(sys.argv) == 4:
         liggghts_line(sys.argv[2], sys.argv[3])
     elif cmd == "table" and len(sys.argv) == 3:

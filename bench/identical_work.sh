@@ -47,8 +47,7 @@ stop_load() {
   load_pid=""
 }
 results=$work/results.txt
-build=$(python3 -c 'import json, sys; p = json.load(open(sys.argv[1]))["provenance"]; print("demvv %s (%s)" % (p["git_sha"], p["dem_flags"]))' "$work/prepared/summary.json")
-echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before $(cut -d' ' -f1-3 /proc/loadavg), $build"
+echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before $(cut -d' ' -f1-3 /proc/loadavg), $(python3 "$here/identical_work.py" build "$work/prepared")"
 for load in $loads; do
   start_load "$load"
   round=1
