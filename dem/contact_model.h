@@ -137,15 +137,19 @@ public:
     law_.prepare(dt);
     const Index n = p.size();
     broken_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    released_.resize(broken_.size());
     double largest = 0;
 #pragma omp parallel reduction(max : largest)
     {
-      std::vector<BrokenBond> &broken = broken_[static_cast<std::size_t>(omp_get_thread_num())];
+      const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+      std::vector<BrokenBond> &broken = broken_[thread];
+      std::vector<std::size_t> &released = released_[thread];
       broken.clear();
+      released.clear();
 #pragma omp for schedule(static)
       for (std::ptrdiff_t c = 0; c < pairs; ++c)
         loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, static_cast<std::size_t>(c),
-                                dt, broken);
+                                dt, {broken, released});
 #pragma omp for schedule(static)
       for (Index b = 0; b < n; ++b)
       {
@@ -181,6 +185,11 @@ public:
     }
     for (const std::vector<BrokenBond> &broken : broken_)
       breaks.insert(breaks.end(), broken.begin(), broken.end());
+    // Each thread's entries ascend, and the threads' ranges too (static
+    // schedule): this is entry order on any thread count.
+    for (const std::vector<std::size_t> &released : released_)
+      for (std::size_t c : released)
+        table.retire_energies(c);
     std::sort(breaks.begin(), breaks.end(),
               [](const BrokenBond &a, const BrokenBond &b) { return a.contact < b.contact; });
     return largest;
@@ -224,10 +233,19 @@ private:
     double bound_first, bound_second;
   };
 
+  /// What a thread's share of the pass collects: bonds broken, and the
+  /// entries that stopped carrying force with energy booked (friction work,
+  /// a bond's released energy), to be moved to the retired totals.
+  struct PassEvents
+  {
+    std::vector<BrokenBond> &broken;
+    std::vector<std::size_t> &released;
+  };
+
   /// Resolves contact c (entry k, pair constants `pair`) at this step and
   /// returns its loads.
   DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, const ContactParams &pair, LawState *states,
-                                       std::size_t c, double dt, std::vector<BrokenBond> &broken)
+                                       std::size_t c, double dt, const PassEvents &events)
   {
     const Index i = k.first, j = k.second;
     if (!k.bonded && !k.state.touching())
@@ -245,9 +263,16 @@ private:
     if constexpr (stateful)
       Law::store(history, states[c]);
     if (r.broke != BreakMode::none)
-      broken.push_back({c, r.broke, r.trial});
+      events.broken.push_back({c, r.broke, r.trial});
     if (!r.touching)
+    {
+      // Its energies leave the entry now, at a step the motion decides, not
+      // when a neighbour rebuild (whose steps follow the skin, or a resume)
+      // drops it: the ledger's sums are then grouped alike in every run.
+      if (k.state.friction_work != 0 || k.state.bond_energy != 0)
+        events.released.push_back(c);
       return {};
+    }
     const Vec3 lever = cross(g.normal, r.shear);
     // In compression the arms are at most the radii and the precomputed
     // terms hold; a bonded pair in tension has longer arms.
@@ -280,8 +305,9 @@ private:
   static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
 
   Law law_;
-  std::vector<PairLoad> loads_;                 ///< per entry, rewritten by every pass
-  std::vector<std::vector<BrokenBond>> broken_; ///< per thread, reused from step to step
+  std::vector<PairLoad> loads_;                    ///< per entry, rewritten by every pass
+  std::vector<std::vector<BrokenBond>> broken_;    ///< per thread, reused from step to step
+  std::vector<std::vector<std::size_t>> released_; ///< per thread: entries whose energies retire this pass
 };
 
 /// The registry: one row per law keyword (law_registry.cpp).

@@ -69,6 +69,14 @@ void ContactTable::retire(const Contact &c)
   retired_.bond_energy += c.state.bond_energy;
 }
 
+void ContactTable::retire_energies(std::size_t c)
+{
+  ContactState &s = contacts_[c].state;
+  retire(contacts_[c]);
+  s.friction_work = 0;
+  s.bond_energy = 0;
+}
+
 void ContactTable::rebuild(const std::vector<Pair> &candidates, const ParticleStore &particles)
 {
   // In place, so that a rebuild holds no second copy of the table: a

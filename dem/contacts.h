@@ -148,6 +148,9 @@ public:
   const std::vector<EntryIndex> &second_list() const { return second_list_; }
 
   const RetiredContactEnergy &retired() const { return retired_; }
+  /// Moves entry c's friction work and released bond energy to the retired
+  /// totals (a contact that stopped carrying force; called in entry order).
+  void retire_energies(std::size_t c);
 
   /// True once after entries were added or the table rebuilt: pair
   /// constants that depend on the balls (stability terms) must be refreshed.

@@ -21,6 +21,16 @@ bool NeighborList::stale(const ParticleStore &particles) const
   return reference_.size() != static_cast<std::size_t>(particles.size());
 }
 
+double NeighborList::largest_displacement(const ParticleStore &particles) const
+{
+  if (stale(particles))
+    return 0;
+  double largest = 0;
+  for (Index p = 0; p < particles.size(); ++p)
+    largest = std::max(largest, (particles.position[p] - reference_[p]).squaredNorm());
+  return std::sqrt(largest);
+}
+
 void NeighborList::release_candidates()
 {
   std::vector<Pair>().swap(pairs_);

@@ -7,6 +7,10 @@
 // Candidates come sorted by (first, second): the contact table merges its
 // history into a new list by a linear walk, with no hashing.
 //
+// The skin is the caller's to choose at each build (Simulation narrows it
+// while balls move slowly: fewer candidates that do not touch); any skin
+// gives the same contacts, so results never depend on it.
+//
 // brute_force_pairs() is the O(N^2) oracle the tests compare against.
 #pragma once
 
@@ -33,6 +37,10 @@ public:
 
   /// True when ball p at x has moved more than skin/2 since the last build.
   bool moved_too_far(Index p, const Vec3 &x) const { return (x - reference_[p]).squaredNorm() > quarter_skin_sq_; }
+
+  /// The farthest any ball has moved since the last build [m]; 0 when the
+  /// list is stale.  Exact (a maximum), so the same on any thread count.
+  double largest_displacement(const ParticleStore &particles) const;
 
   /// True when the list cannot be used at all (never built, or the particle
   /// count changed).  Whoever changes radii must ask for a rebuild

@@ -178,7 +178,8 @@ void Simulation::refresh_contacts()
   // used so that a scene of held balls still has a step.  Radii only change
   // before a refresh, so this is computed here, not every step.
   lone_bound_max_ = lone_contact_bound(particles_);
-  neighbors_.set_skin(settings_.skin_fraction * particles_.max_radius());
+  neighbors_.set_skin(skin_for_rebuild());
+  built_at_step_ = step_;
   // The rebuild's scratch (candidates, cells) and the force pass's (load
   // records) are never needed at once: each is freed before the other is
   // made, so that peak memory holds only the larger.
@@ -187,6 +188,46 @@ void Simulation::refresh_contacts()
   contacts_.rebuild(neighbors_.pairs(), particles_);
   neighbors_.release_candidates();
   rebuild_requested_ = false;
+}
+
+double Simulation::skin_for_rebuild() const
+{
+  // A wider skin makes every force pass test more candidates that do not
+  // touch; a narrower one makes rebuilds more frequent.  With balls moving
+  // at most u per step (the farthest one since the last build, over the
+  // steps it took), a skin s lasts s / (2 u) steps: the skin taken is the
+  // one that lasts about `lasting` steps, never wider than the deck's (fast
+  // balls: packing, impacts, breakage) and never below 1 % of the largest
+  // radius.  A build costs about 2.7 force passes on one thread and twice
+  // that on two (it is serial; BENCHMARKS.md, Adaptive neighbour skin), so
+  // the rebuilds this adds cost at most about 1 % of a run, while a slow
+  // compression stops testing the pairs that do not touch (a sixth of its
+  // step on the identical-work packing).  Candidates left out cannot touch
+  // before the next build, so the motion does not depend on the skin; the
+  // rule reads positions only (not clocks), so the rebuild steps are the
+  // same on any thread count too.
+  constexpr double lasting = 500, narrowest = 0.01;
+  const double radius = particles_.max_radius(), widest = settings_.skin_fraction * radius;
+  if (!settings_.adaptive_skin)
+    return widest;
+  // u from the motion since the last build; at the first build (or after
+  // balls were added) from the fastest ball over the last step, and a run
+  // that starts with every ball at rest starts narrow.
+  const long steps = step_ - built_at_step_;
+  double per_step = 0;
+  if (steps > 0 && !neighbors_.stale(particles_))
+    per_step = neighbors_.largest_displacement(particles_) / double(steps);
+  else
+  {
+    double fastest = 0;
+    for (const Vec3 &v : particles_.velocity)
+      fastest = std::max(fastest, v.squaredNorm());
+    if (dt_prev_ > 0)
+      per_step = std::sqrt(fastest) * dt_prev_;
+    else if (fastest > 0)
+      return widest;
+  }
+  return std::clamp(2 * lasting * per_step, std::min(narrowest * radius, widest), widest);
 }
 
 void Simulation::compute_forces()

@@ -44,7 +44,8 @@ struct SimulationSettings
   double time_step_safety = 0.8;    ///< -, fraction of the critical step bound
   double fixed_time_step = 0;       ///< s, > 0 fixes the step
   bool allow_unstable_step = false; ///< run a fixed step above the bound anyway
-  double skin_fraction = 0.25;      ///< -, neighbour skin / largest radius
+  double skin_fraction = 0.25;      ///< -, neighbour skin / largest radius (the widest, when adaptive)
+  bool adaptive_skin = true;        ///< narrow the skin while balls move slowly (Simulation::skin_for_rebuild)
 };
 
 struct BondBreak
@@ -246,6 +247,7 @@ public:
   void invalidate_neighbors() { rebuild_requested_ = true; }
   /// Rebuilds the neighbour list and contact table now (e.g. before bonding).
   void refresh_contacts();
+  double skin_for_rebuild() const;
 
   /// Energy terms at the last force time.  Kinetic energy is current only
   /// after integrate(true).
@@ -302,6 +304,7 @@ private:
 
   double time_ = 0;
   long step_ = 0;
+  long built_at_step_ = 0; ///< the step of the last neighbour build
   double dt_ = 0, dt_prev_ = 0, dt_critical_ = infinity;
   bool rebuild_requested_ = true;
   bool forces_current_ = false;

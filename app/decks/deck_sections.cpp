@@ -166,7 +166,8 @@ void declare_motion(DeckSchema &s, const std::string &default_gravity, double de
          "PFC local non-viscous damping coefficient alpha (0 = undamped; 0.7 is PFC's default; 1 would cancel "
          "every force).",
          Interval::open_above);
-  s.real("time step safety", 0.8, 0, 1, "-", "Fraction of the critical time step bound used by the automatic step; the bound is "
+  s.real("time step safety", 0.8, 0, 1, "-",
+         "Fraction of the critical time step bound used by the automatic step; the bound is "
          "2 / sqrt((1 + local damping) x the largest stiffness-to-mass bound), local damping "
          "stiffening the fastest mode.",
          Interval::open_below);
@@ -174,8 +175,13 @@ void declare_motion(DeckSchema &s, const std::string &default_gravity, double de
   s.choice("unstable fixed step", "stop", {"stop", "run"},
            "What to do when a fixed step exceeds the critical step bound: stop with exit code 3, "
            "or run anyway (to demonstrate instability).");
-  s.real("neighbour skin", 0.25, 0, inf, "-", "Verlet skin of the neighbour list as a fraction of the largest radius.",
+  s.real("neighbour skin", 0.25, 0, inf, "-",
+         "Verlet skin of the neighbour list as a fraction of the largest radius (the widest one, when adaptive).",
          Interval::open_below);
+  s.choice("neighbour skin mode", "adaptive", {"adaptive", "fixed"},
+           "adaptive: at each neighbour rebuild the skin is narrowed, down to 1 % of the largest radius, while the "
+           "balls move slowly (fewer candidate pairs to test each step); fixed: always the neighbour skin. Results "
+           "do not depend on the skin, only the speed does.");
   s.leave();
 }
 
@@ -188,6 +194,7 @@ dem::SimulationSettings parse_motion(const Deck &d)
   m.fixed_time_step = d.real("motion/fixed time step");
   m.allow_unstable_step = d.text("motion/unstable fixed step") == "run";
   m.skin_fraction = d.real("motion/neighbour skin");
+  m.adaptive_skin = d.text("motion/neighbour skin mode") == "adaptive";
   return m;
 }
 

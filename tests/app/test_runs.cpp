@@ -48,7 +48,9 @@ demvv::Deck small_uniaxial(const std::string &law = "linear")
 /// same deck: wall time, speed, the run's own status line and provenance.
 nlohmann::json physics_of(nlohmann::json s)
 {
-  for (const char *k : {"wall_seconds", "particle_steps_per_second", "status", "provenance"})
+  // Cost counters are not physics: the neighbour list's builds follow its
+  // adaptive skin, which a resumed run starts afresh (dem/simulation.cpp).
+  for (const char *k : {"wall_seconds", "particle_steps_per_second", "neighbour_rebuilds", "status", "provenance"})
     s.erase(k);
   return s;
 }

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <numeric>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 using namespace demtest;
@@ -174,6 +175,83 @@ TEST_CASE("contact history survives neighbour rebuilds, bonded pairs stay listed
   sim.invalidate_neighbors();
   sim.refresh_contacts();
   CHECK(sim.contacts().find(0, 1) == nullptr);
+}
+
+TEST_CASE("an adaptive skin narrows at rest, widens in a fall, and changes no ball's motion", "[dem][neighbors]")
+{
+  // A loose grid of balls falls onto a floor, starting at rest: the skin
+  // starts at its narrowest (no motion yet), widens as the balls speed up
+  // and rebuilds come often, and new contacts form all the time.  Any pair
+  // the narrow lists missed would change the motion, so the two runs must
+  // agree to the last bit in every ball.
+  const auto run = [](bool adaptive)
+  {
+    dem::ParticleStore p;
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j)
+        for (int k = 0; k < 6; ++k)
+        {
+          const double jitter = 0.3e-3 * std::sin(1.7 * i + 2.3 * j + 3.1 * k);
+          p.add(ball(Vec3(2.5e-3 * i + jitter, 2.5e-3 * j - jitter, 1.5e-3 + 2.5e-3 * k), 1e-3, 1e6, 1e5, 0.5));
+        }
+    dem::WallSet walls;
+    walls.add(floor_wall(1e6, 1e5, 0.5));
+    dem::SimulationSettings settings = undamped();
+    settings.local_damping = 0.3;
+    settings.gravity = Vec3(0, 0, -50);
+    settings.adaptive_skin = adaptive;
+    dem::Simulation sim = make_sim(std::move(p), std::move(walls), settings);
+    double narrowest = dem::infinity, widest = 0;
+    for (int step = 0; step < 4000; ++step)
+    {
+      sim.step();
+      narrowest = std::min(narrowest, sim.neighbors().skin());
+      widest = std::max(widest, sim.neighbors().skin());
+    }
+    return std::make_tuple(std::move(sim), narrowest, widest);
+  };
+  const auto [fixed, fixed_narrowest, fixed_widest] = run(false);
+  const auto [adaptive, narrowest, widest] = run(true);
+  const double largest_skin = 0.25 * 1e-3;
+  CHECK(fixed_narrowest == largest_skin);
+  CHECK(narrowest == 0.01 * largest_skin / 0.25); // 1 % of the radius, at rest
+  CHECK(widest > 10 * narrowest);                 // it widened in the fall
+  CHECK(widest <= largest_skin);
+  CHECK(adaptive.neighbors().rebuilds() > fixed.neighbors().rebuilds());
+  REQUIRE(fixed.contacts().size() > 100); // the balls landed and touch
+  bool same = true;
+  for (dem::Index b = 0; b < fixed.particles().size(); ++b)
+    same = same && fixed.particles().position[b] == adaptive.particles().position[b] &&
+           fixed.particles().velocity[b] == adaptive.particles().velocity[b] &&
+           fixed.particles().spin[b] == adaptive.particles().spin[b];
+  CHECK(same);
+}
+
+TEST_CASE("a contact that slid hands its friction work to the retired total at the step it parts", "[dem][contacts]")
+{
+  // Not when a rebuild drops it: rebuild steps follow the skin (and a
+  // resume), and the ledger's sums must be grouped alike in every run.
+  // Two balls 1 um into each other, one sliding across at 1 m/s: the
+  // contact slips at once (mu kn U = 0.1 N, ks v dt about 2 N), pushes them
+  // apart, and parts within a few steps, well within the skin.
+  auto sim = two_balls(1e-3, 2e-3 - 1e-6, 1e6, 1e6, 0.1);
+  sim.particles().velocity[1] = Vec3(0, 1, 0);
+  sim.step();
+  double slid = 0, ledger = 0;
+  for (int k = 0; k < 1000 && sim.contacts().find(0, 1)->state.touching(); ++k)
+  {
+    slid = sim.contacts().find(0, 1)->state.friction_work;
+    ledger = sim.energy().friction;
+    sim.step();
+  }
+  const dem::Contact *c = sim.contacts().find(0, 1);
+  REQUIRE(c != nullptr); // parted, still listed: no rebuild dropped it
+  REQUIRE_FALSE(c->state.touching());
+  REQUIRE(slid > 0);
+  CHECK(sim.neighbors().rebuilds() == 1);
+  CHECK(c->state.friction_work == 0);
+  CHECK(sim.contacts().retired().friction_work == slid);
+  CHECK(sim.energy().friction == ledger);
 }
 
 TEST_CASE("the neighbour grid takes balls at huge coordinates without casting them out of range", "[dem][neighbors]")
