@@ -344,8 +344,16 @@ void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const 
     p.friction[b] = ball.friction;
     p.set_radius(b, p.radius[b]); // mass and inertia from the new density
   }
+  // The test's ledger starts at zero, as its clock does below: the
+  // preparation's friction and bond energy stay the preparation's.
   for (dem::ContactRecord &c : snap.contacts)
+  {
     c.params = dem::ContactTable::pair_params(p, c.first, c.second);
+    c.state.friction_work = 0;
+    c.state.bond_energy = 0;
+  }
+  for (dem::WallContact &c : snap.wall_contacts)
+    c.state.friction_work = 0;
   snap.walls[sample.cell.bottom].props = platen;
   snap.walls[sample.cell.top].props = platen;
   const double last_step = snap.clock.last_time_step;

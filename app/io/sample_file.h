@@ -66,7 +66,9 @@ struct SampleFile
 /// kn, ks, friction; positions and radii kept), every contact the pair
 /// constants that follow, the platens `platen`, and restarts the clock at
 /// zero (keeping the last time step) for a new test.  Contact histories and
-/// law states are kept (see the header note on tests of another law).
+/// law states are kept (see the header note on tests of another law); the
+/// friction work and bond energy they booked are the preparation's and are
+/// zeroed with the clock, so the test's energy ledger starts at zero.
 void apply_test_properties(SampleFile &sample, const dem::BallSpec &ball, const dem::WallProps &platen);
 
 /// Writes a sample file atomically; returns the text written.

@@ -106,9 +106,17 @@ TEST_CASE("a 200-ball preparation meets its own targets and feeds a uniaxial tes
   REQUIRE(contacts > 100);
   CHECK(r["fabric_deviator_norm"].get<double>() < 3 * std::sqrt(2.0 / (3.0 * contacts)));
 
-  // The sample file is what a uniaxial deck loads.
+  // The sample file is what a uniaxial deck loads.  A preparation with
+  // friction leaves the work its contacts did in their histories: one such
+  // contact is written here, work the test's ledger must not count.
+  demvv::SampleFile sample = result.sample;
+  const auto slid = std::find_if(sample.snapshot.contacts.begin(), sample.snapshot.contacts.end(),
+                                 [](const dem::ContactRecord &c) { return c.state.touching(); });
+  REQUIRE(slid != sample.snapshot.contacts.end());
+  slid->state.friction_work = 1e-6;
+  slid->state.bond_energy = 2e-6;
   const std::string file = demvv_tests::test_file("test_prepare", "small_sample.json");
-  demvv::write_sample(file, result.sample);
+  demvv::write_sample(file, sample);
   demvv::Deck test = demvv::Deck::defaults(demvv::deck_kinds(), "uniaxial");
   test.set("sample/source", "file");
   test.set("sample/file", file);
@@ -118,6 +126,10 @@ TEST_CASE("a 200-ball preparation meets its own targets and feeds a uniaxial tes
   REQUIRE_FALSE(run.status.fault);
   CHECK(run.series.column("axial_stress_pa").back() > 0);
   CHECK(run.summary["sample"]["particles"].get<long>() == 200);
+  // ...but the test's ledger starts at zero, as its clock does.
+  CHECK(run.series.column("time_s").front() == 0);
+  CHECK(run.series.column("friction_dissipated_j").front() == 0);
+  CHECK(run.series.column("bond_energy_released_j").front() == 0);
 }
 
 TEST_CASE("a saved run continues exactly as if it had never stopped", "[prepare][sample]")
