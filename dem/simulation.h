@@ -247,7 +247,6 @@ public:
   void invalidate_neighbors() { rebuild_requested_ = true; }
   /// Rebuilds the neighbour list and contact table now (e.g. before bonding).
   void refresh_contacts();
-  double skin_for_rebuild() const;
 
   /// Energy terms at the last force time.  Kinetic energy is current only
   /// after integrate(true).
@@ -291,6 +290,8 @@ private:
   BallAdvance advance_balls();
   void record_breaks();
   void choose_time_step();
+  /// The neighbour skin for the build about to be made [m].
+  double skin_for_rebuild() const;
   [[noreturn]] void fail(Index particle, const std::string &what) const;
   /// Strain energy stored in and friction work done by the contacts of wall w [J].
   std::pair<double, double> wall_energy(WallIndex w) const;
