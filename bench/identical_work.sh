@@ -5,7 +5,10 @@
 # number of steps in both engines (bench/identical_work.py writes the files).
 # Rounds interleave the engines: demvv on 1 thread, LIGGGHTS on 1 rank,
 # demvv on 2 threads, LIGGGHTS on 2 ranks, demvv with its default thread
-# count (set against LIGGGHTS on 2 ranks), under each of the chosen loads:
+# count (set against LIGGGHTS on 2 ranks), under each of the chosen loads;
+# LIGGGHTS runs twice each time, with the peers' neighbour skin (0.2 mm) and
+# with one as narrow as demvv's adaptive skin at rest (faster on this slow
+# compression), and each round's ratio is also given against the faster:
 #   idle   nothing else runs;
 #   half   a loop that keeps one core busy half of the time (50 ms on, 50 ms off);
 #   full   a loop that keeps one core busy all the time.
@@ -58,13 +61,15 @@ for load in $loads; do
       "$demvv" run "$work/scene.prm" --out "$work/demvv_run" --replace $threads --quiet
       python3 "$here/identical_work.py" demvv "$work/demvv_run" "$load demvv $n $round" | tee -a "$results"
       if [ "$n" != default ] && command -v liggghts > /dev/null; then
-        if [ "$n" = 1 ]; then
-          (cd "$work" && liggghts -in liggghts.in -log none > liggghts.log 2>&1) || true
-        else
-          (cd "$work" && mpirun --allow-run-as-root --oversubscribe -np "$n" liggghts -in liggghts.in -log none \
-            > liggghts.log 2>&1) || true
-        fi
-        python3 "$here/identical_work.py" liggghts "$work/liggghts.log" "$load liggghts $n $round" | tee -a "$results"
+        for input in liggghts liggghts_narrow; do
+          if [ "$n" = 1 ]; then
+            (cd "$work" && liggghts -in $input.in -log none > liggghts.log 2>&1) || true
+          else
+            (cd "$work" && mpirun --allow-run-as-root --oversubscribe -np "$n" liggghts -in $input.in -log none \
+              > liggghts.log 2>&1) || true
+          fi
+          python3 "$here/identical_work.py" liggghts "$work/liggghts.log" "$load $input $n $round" | tee -a "$results"
+        done
       fi
     done
     round=$((round + 1))
