@@ -18,6 +18,7 @@
 // describe the bitumen between grains.
 #pragma once
 
+#include "dem/balanced_ranges.h"
 #include "dem/ball_forces.h"
 #include "dem/contact_resolve.h"
 #include "dem/contacts.h"
@@ -122,7 +123,10 @@ public:
   // barrier, the second sums each ball's records, first the contacts where
   // it is first, then those where it is second (via the table's second
   // list), then its walls (ball_forces.h).  The sums keep that order, so
-  // results do not depend on the thread count.
+  // results do not depend on the thread count.  Each loop's items are cut
+  // into one contiguous range per thread, the cuts moved from pass to pass
+  // towards equal times (balanced_ranges.h); breaks and energies to retire
+  // are collected per range, so that ranges in order are entries in order.
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
@@ -132,61 +136,73 @@ public:
     const std::vector<EntryIndex> &second_list = table.second_list();
     loads_.resize(table.size());
     PairLoad *const loads = loads_.data();
-    const auto pairs = static_cast<std::ptrdiff_t>(table.size());
     const double dt = balls.dt;
     law_.prepare(dt);
-    const Index n = p.size();
-    broken_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    const int ranges = omp_get_max_threads();
+    contact_ranges_.prepare(table.size(), ranges);
+    ball_ranges_.prepare(static_cast<std::size_t>(p.size()), ranges);
+    broken_.resize(static_cast<std::size_t>(ranges));
     released_.resize(broken_.size());
     double largest = 0;
 #pragma omp parallel reduction(max : largest)
     {
-      const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-      std::vector<BrokenBond> &broken = broken_[thread];
-      std::vector<std::size_t> &released = released_[thread];
-      broken.clear();
-      released.clear();
-#pragma omp for schedule(static)
-      for (std::ptrdiff_t c = 0; c < pairs; ++c)
-        loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, static_cast<std::size_t>(c),
-                                dt, {broken, released});
-#pragma omp for schedule(static)
-      for (Index b = 0; b < n; ++b)
+      const int team = omp_get_num_threads();
+      for (int r = omp_get_thread_num(); r < ranges; r += team)
       {
-        double f[3], t[3] = {0, 0, 0};
-        balls.weight(b, f);
-        double bound = 0;
-        const std::size_t end = table.first_begin(b + 1);
-        for (std::size_t c = table.first_begin(b); c < end; ++c)
+        std::vector<BrokenBond> &broken = broken_[static_cast<std::size_t>(r)];
+        std::vector<std::size_t> &released = released_[static_cast<std::size_t>(r)];
+        broken.clear();
+        released.clear();
+        const double start = omp_get_wtime();
+        for (std::size_t c = contact_ranges_.begin(r); c < contact_ranges_.end(r); ++c)
+          loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, c, dt, {broken, released});
+        contact_ranges_.record(r, omp_get_wtime() - start);
+      }
+#pragma omp barrier
+      for (int r = omp_get_thread_num(); r < ranges; r += team)
+      {
+        const double start = omp_get_wtime();
+        const auto last_ball = static_cast<Index>(ball_ranges_.end(r));
+        for (auto b = static_cast<Index>(ball_ranges_.begin(r)); b < last_ball; ++b)
         {
-          const PairLoad &load = loads[c];
-          const double arm = p.radius[b] - 0.5 * load.overlap;
-          for (int d = 0; d < 3; ++d)
+          double f[3], t[3] = {0, 0, 0};
+          balls.weight(b, f);
+          double bound = 0;
+          const std::size_t end = table.first_begin(b + 1);
+          for (std::size_t c = table.first_begin(b); c < end; ++c)
           {
-            f[d] -= load.force[d];
-            t[d] -= arm * load.lever[d];
+            const PairLoad &load = loads[c];
+            const double arm = p.radius[b] - 0.5 * load.overlap;
+            for (int d = 0; d < 3; ++d)
+            {
+              f[d] -= load.force[d];
+              t[d] -= arm * load.lever[d];
+            }
+            bound += load.bound_first;
           }
-          bound += load.bound_first;
-        }
-        const std::size_t last = table.second_begin(b + 1);
-        for (std::size_t k = table.second_begin(b); k < last; ++k)
-        {
-          const PairLoad &load = loads[second_list[k]];
-          const double arm = p.radius[b] - 0.5 * load.overlap;
-          for (int d = 0; d < 3; ++d)
+          const std::size_t last = table.second_begin(b + 1);
+          for (std::size_t k = table.second_begin(b); k < last; ++k)
           {
-            f[d] += load.force[d];
-            t[d] -= arm * load.lever[d];
+            const PairLoad &load = loads[second_list[k]];
+            const double arm = p.radius[b] - 0.5 * load.overlap;
+            for (int d = 0; d < 3; ++d)
+            {
+              f[d] += load.force[d];
+              t[d] -= arm * load.lever[d];
+            }
+            bound += load.bound_second;
           }
-          bound += load.bound_second;
+          largest = std::max(largest, balls.finish(b, f, t, bound));
         }
-        largest = std::max(largest, balls.finish(b, f, t, bound));
+        ball_ranges_.record(r, omp_get_wtime() - start);
       }
     }
+    contact_ranges_.rebalance();
+    ball_ranges_.rebalance();
     for (const std::vector<BrokenBond> &broken : broken_)
       breaks.insert(breaks.end(), broken.begin(), broken.end());
-    // Each thread's entries ascend, and the threads' ranges too (static
-    // schedule): this is entry order on any thread count.
+    // Each range's entries ascend, and the ranges too: this is entry order
+    // on any thread count.
     for (const std::vector<std::size_t> &released : released_)
       for (std::size_t c : released)
         table.retire_energies(c);
@@ -233,7 +249,7 @@ private:
     double bound_first, bound_second;
   };
 
-  /// What a thread's share of the pass collects: bonds broken, and the
+  /// What a range of the pass collects: bonds broken, and the
   /// entries that stopped carrying force with energy booked (friction work,
   /// a bond's released energy), to be moved to the retired totals.
   struct PassEvents
@@ -306,8 +322,9 @@ private:
 
   Law law_;
   std::vector<PairLoad> loads_;                    ///< per entry, rewritten by every pass
-  std::vector<std::vector<BrokenBond>> broken_;    ///< per thread, reused from step to step
-  std::vector<std::vector<std::size_t>> released_; ///< per thread: entries whose energies retire this pass
+  std::vector<std::vector<BrokenBond>> broken_;    ///< per range, reused from step to step
+  std::vector<std::vector<std::size_t>> released_; ///< per range: entries whose energies retire this pass
+  BalancedRanges contact_ranges_, ball_ranges_;    ///< each loop's items, one range per thread
 };
 
 /// The registry: one row per law keyword (law_registry.cpp).

@@ -1,4 +1,5 @@
 // Unit tests of engine pieces, each against an exact value.
+#include "dem/balanced_ranges.h"
 #include "tests/dem/two_body.h"
 
 #include "dem/bonds.h"
@@ -857,4 +858,67 @@ TEST_CASE("least_steps bounds the steps of a run from below", "[dem][stability]"
   // A fixed step gives the count exactly.
   sim.settings().fixed_time_step = 1e-6;
   CHECK_THAT(dem::least_steps(sim.particles(), sim.settings(), duration), WithinRel(5000.0, 1e-12));
+}
+
+namespace
+{
+/// Runs `passes` passes of a loop whose item i costs cost(i) seconds on
+/// balanced ranges, checking after each that the ranges cover the items in
+/// order; returns each range's time in the last pass.
+template <class Cost>
+std::vector<double> balance(dem::BalancedRanges &ranges, std::size_t items, int count, int passes, Cost cost)
+{
+  std::vector<double> seconds;
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    ranges.prepare(items, count);
+    REQUIRE(ranges.ranges() == count);
+    REQUIRE(ranges.begin(0) == 0);
+    REQUIRE(ranges.end(count - 1) == items);
+    seconds.assign(static_cast<std::size_t>(count), 0.0);
+    for (int r = 0; r < count; ++r)
+    {
+      REQUIRE(ranges.begin(r) <= ranges.end(r));
+      if (r > 0)
+        REQUIRE(ranges.begin(r) == ranges.end(r - 1));
+      for (std::size_t i = ranges.begin(r); i < ranges.end(r); ++i)
+        seconds[static_cast<std::size_t>(r)] += cost(i);
+      ranges.record(r, seconds[static_cast<std::size_t>(r)]);
+    }
+    ranges.rebalance();
+  }
+  return seconds;
+}
+} // namespace
+
+TEST_CASE("balanced ranges cover a loop in order and move their cuts to equal times", "[dem][threads]")
+{
+  // Items 0-299 cost three times the rest: 1600 units in all, split equally
+  // at 800/3 = 266.7 items.  Each pass moves the cut half way to where the
+  // measured costs put it (rounded to an item), so after 40 passes it is
+  // within an item.
+  dem::BalancedRanges two;
+  const auto step_cost = [](std::size_t i) { return i < 300 ? 3.0 : 1.0; };
+  balance(two, 1000, 2, 40, step_cost);
+  CHECK(std::abs(double(two.end(0)) - 800.0 / 3.0) <= 1.0);
+
+  // A cost that grows along the loop (item i costs i + 1) on three ranges:
+  // the times come out equal to within a few items' cost (about 1 %).
+  dem::BalancedRanges three;
+  const std::vector<double> t = balance(three, 3000, 3, 60, [](std::size_t i) { return double(i + 1); });
+  const double total = t[0] + t[1] + t[2];
+  for (double s : t)
+    CHECK(std::abs(s - total / 3) <= 0.01 * total / 3);
+
+  // A new item count keeps the cuts' fractions; a new range count starts
+  // from equal shares; equal times leave the cuts where they are.
+  two.prepare(2000, 2);
+  CHECK(std::abs(double(two.end(0)) - 1600.0 / 3.0) <= 2.0);
+  dem::BalancedRanges even;
+  balance(even, 999, 3, 5, [](std::size_t) { return 1.0; });
+  even.prepare(999, 3);
+  CHECK(even.end(0) == 333);
+  CHECK(even.end(1) == 666);
+  even.prepare(999, 2);
+  CHECK(even.end(0) == 499);
 }
