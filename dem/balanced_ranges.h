@@ -4,14 +4,15 @@
 // A static schedule gives each thread the same count of items and keeps
 // them on the same core from step to step (its caches hold them); but the
 // items do not cost the same (a contact that touches against one that
-// does not, a ball against a wall), so on the identical-work scene one
-// thread waited at each of the force pass's two barriers for about a tenth
-// of the step (BENCHMARKS.md, "Balanced ranges").  A dynamic schedule
-// removed the waits and made each loop half again slower: the items moved
-// between cores.  These ranges stay contiguous and stay with their thread,
-// and each pass measures its ranges' times: the cost density of each range
-// (its time over its items) gives a piecewise-constant cost of the whole
-// loop, and each cut moves half way to where that cost splits equally.
+// does not, a ball against a wall), so on the identical-work scene each
+// thread waited at one of the force pass's two barriers for about a tenth
+// of the step (BENCHMARKS.md, "LIGGGHTS at its best, and balanced
+// ranges").  A dynamic schedule removed the waits and made each loop half
+// again slower: the items moved between cores.  These ranges stay
+// contiguous and stay with their thread, and each pass measures its
+// ranges' times: the cost density of each range (its time over its items)
+// gives a piecewise-constant cost of the whole loop, and each cut moves
+// half way to where that cost splits equally.
 // On a machine where one core is also busy, its thread's range shrinks.
 //
 // Which thread runs which item changes no result in the passes that use
