@@ -37,15 +37,11 @@ public:
   void prepare(std::size_t items, int ranges)
   {
     const auto count = static_cast<std::size_t>(std::max(ranges, 1));
-    if (cuts_.size() != count + 1)
-    {
-      cuts_.assign(count + 1, 0);
+    const bool fresh = cuts_.size() != count + 1 || items_ == 0;
+    cuts_.resize(count + 1);
+    if (fresh || items != items_)
       for (std::size_t r = 0; r <= count; ++r)
-        cuts_[r] = items * r / count;
-    }
-    else if (items != items_)
-      for (std::size_t r = 0; r <= count; ++r)
-        cuts_[r] = r == count ? items : items_ == 0 ? items * r / count : cuts_[r] * items / items_;
+        cuts_[r] = fresh ? items * r / count : cuts_[r] * items / items_;
     items_ = items;
     seconds_.assign(count, 0.0);
   }

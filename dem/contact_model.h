@@ -141,21 +141,19 @@ public:
     const int ranges = omp_get_max_threads();
     contact_ranges_.prepare(table.size(), ranges);
     ball_ranges_.prepare(static_cast<std::size_t>(p.size()), ranges);
-    broken_.resize(static_cast<std::size_t>(ranges));
-    released_.resize(broken_.size());
+    events_.resize(static_cast<std::size_t>(ranges));
     double largest = 0;
 #pragma omp parallel reduction(max : largest)
     {
       const int team = omp_get_num_threads();
       for (int r = omp_get_thread_num(); r < ranges; r += team)
       {
-        std::vector<BrokenBond> &broken = broken_[static_cast<std::size_t>(r)];
-        std::vector<std::size_t> &released = released_[static_cast<std::size_t>(r)];
-        broken.clear();
-        released.clear();
+        PassEvents &events = events_[static_cast<std::size_t>(r)];
+        events.broken.clear();
+        events.released.clear();
         const double start = omp_get_wtime();
         for (std::size_t c = contact_ranges_.begin(r); c < contact_ranges_.end(r); ++c)
-          loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, c, dt, {broken, released});
+          loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, c, dt, events);
         contact_ranges_.record(r, omp_get_wtime() - start);
       }
 #pragma omp barrier
@@ -199,13 +197,14 @@ public:
     }
     contact_ranges_.rebalance();
     ball_ranges_.rebalance();
-    for (const std::vector<BrokenBond> &broken : broken_)
-      breaks.insert(breaks.end(), broken.begin(), broken.end());
     // Each range's entries ascend, and the ranges too: this is entry order
     // on any thread count.
-    for (const std::vector<std::size_t> &released : released_)
-      for (std::size_t c : released)
+    for (const PassEvents &events : events_)
+    {
+      breaks.insert(breaks.end(), events.broken.begin(), events.broken.end());
+      for (std::size_t c : events.released)
         table.retire_energies(c);
+    }
     std::sort(breaks.begin(), breaks.end(),
               [](const BrokenBond &a, const BrokenBond &b) { return a.contact < b.contact; });
     return largest;
@@ -254,14 +253,14 @@ private:
   /// a bond's released energy), to be moved to the retired totals.
   struct PassEvents
   {
-    std::vector<BrokenBond> &broken;
-    std::vector<std::size_t> &released;
+    std::vector<BrokenBond> broken;
+    std::vector<std::size_t> released;
   };
 
   /// Resolves contact c (entry k, pair constants `pair`) at this step and
   /// returns its loads.
   DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, const ContactParams &pair, LawState *states,
-                                       std::size_t c, double dt, const PassEvents &events)
+                                       std::size_t c, double dt, PassEvents &events)
   {
     const Index i = k.first, j = k.second;
     if (!k.bonded && !k.state.touching())
@@ -321,10 +320,9 @@ private:
   static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
 
   Law law_;
-  std::vector<PairLoad> loads_;                    ///< per entry, rewritten by every pass
-  std::vector<std::vector<BrokenBond>> broken_;    ///< per range, reused from step to step
-  std::vector<std::vector<std::size_t>> released_; ///< per range: entries whose energies retire this pass
-  BalancedRanges contact_ranges_, ball_ranges_;    ///< each loop's items, one range per thread
+  std::vector<PairLoad> loads_;                 ///< per entry, rewritten by every pass
+  std::vector<PassEvents> events_;              ///< per range, reused from step to step
+  BalancedRanges contact_ranges_, ball_ranges_; ///< each loop's items, one range per thread
 };
 
 /// The registry: one row per law keyword (law_registry.cpp).

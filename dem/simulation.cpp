@@ -202,10 +202,10 @@ double Simulation::skin_for_rebuild() const
   // that on two (it is serial; BENCHMARKS.md, Adaptive neighbour skin), so
   // the rebuilds this adds cost at most about 1 % of a run, while a slow
   // compression stops testing the pairs that do not touch (about an eighth
-  // of its step on the identical-work packing).  Candidates left out cannot touch
-  // before the next build, so the motion does not depend on the skin; the
-  // rule reads positions only (not clocks), so the rebuild steps are the
-  // same on any thread count too.
+  // of its step on the identical-work packing).  Candidates left out cannot
+  // touch before the next build, so the motion does not depend on the skin;
+  // the rule reads positions only (not clocks), so the rebuild steps are
+  // the same on any thread count too.
   constexpr double lasting = 500, narrowest = 0.01;
   const double radius = particles_.max_radius(), widest = settings_.skin_fraction * radius;
   if (!settings_.adaptive_skin)
