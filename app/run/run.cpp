@@ -475,16 +475,21 @@ void RunFiles::resume(const nlohmann::json &state)
     paraview_->restore(state.at("paraview"));
 }
 
-int idle_cores()
+std::optional<int> runnable_tasks()
 {
-  const int cores = omp_get_num_procs();
   std::ifstream in("/proc/loadavg");
   double minute = 0, five = 0, fifteen = 0;
   std::string tasks;
   if (!(in >> minute >> five >> fifteen >> tasks))
-    return cores;
-  const int runnable = std::atoi(tasks.c_str()); // "runnable/total", this process included
-  return std::clamp(cores - (runnable - 1), 1, cores);
+    return std::nullopt;
+  return std::atoi(tasks.c_str()); // "runnable/total", this process included
+}
+
+int idle_cores()
+{
+  const int cores = omp_get_num_procs();
+  const std::optional<int> runnable = runnable_tasks();
+  return runnable ? std::clamp(cores - (*runnable - 1), 1, cores) : cores;
 }
 
 bool threads_are_ours(const RunOptions &options)
@@ -541,16 +546,23 @@ int apply_threads(const RunOptions &options)
   return omp_get_max_threads();
 }
 
-ThreadGovernor::ThreadGovernor(int start, int most, bool active, std::function<double()> now)
-  : now_(std::move(now)), most_(std::max(most, 1)), current_(active ? std::clamp(start, 1, most_) : start),
-    ours_(active)
+ThreadGovernor::ThreadGovernor(int start, int most, bool active, Probes probes)
+  : now_(std::move(probes.now)), spare_cores_(std::move(probes.spare_cores)), most_(std::max(most, 1)),
+    current_(active ? std::clamp(start, 1, most_) : start), ours_(active)
 {
   if (ours_ && current_ != start)
     use(current_);
   if (!now_)
     now_ = [start = std::chrono::steady_clock::now()]
     { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  if (!spare_cores_)
+    spare_cores_ = []() -> std::optional<int>
+    {
+      const std::optional<int> runnable = runnable_tasks();
+      return runnable ? std::optional<int>(omp_get_num_procs() - *runnable) : std::nullopt;
+    };
   begin_window();
+  last_trial_ = window_start_;
   // A run started below its ceiling (the load held it back) first tries one
   // more thread, and soon.
   constexpr double first_trial_up = 0.5; // s
@@ -615,6 +627,12 @@ void ThreadGovernor::after_step()
       else if (current_ == most_)
         try_fewer_ = true;
       trial_ = try_fewer_ ? current_ - 1 : current_ + 1;
+      if (!worth_trying(end))
+      {
+        next_trial_ = end + recheck;
+        begin_window();
+        break;
+      }
       use(trial_);
       trial_deadline_ = (1 - gain) * settled_per_step_ * double(window_steps_);
       phase_ = Phase::trial;
@@ -637,8 +655,16 @@ void ThreadGovernor::after_step()
   }
 }
 
+bool ThreadGovernor::worth_trying(double end)
+{
+  const std::optional<int> spare = spare_cores_();
+  trial_had_reason_ = !spare || (trial_ < current_ ? *spare < 0 : *spare > 0);
+  return trial_had_reason_ || end - last_trial_ >= longest_spacing;
+}
+
 void ThreadGovernor::settle(double end, bool trial_won)
 {
+  last_trial_ = end;
   if (trial_won)
   {
     try_fewer_ = trial_ < current_;
@@ -650,7 +676,10 @@ void ThreadGovernor::settle(double end, bool trial_won)
   else
   {
     try_fewer_ = !try_fewer_;
-    trial_spacing_ = std::min(2 * trial_spacing_, longest_spacing);
+    // A trial the machine gave no reason for, lost, says nothing about
+    // the next reason it gives: the spacing stays.
+    if (trial_had_reason_)
+      trial_spacing_ = std::min(2 * trial_spacing_, longest_spacing);
   }
   next_trial_ = end + trial_spacing_;
   phase_ = Phase::settled;

@@ -23,6 +23,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -276,6 +277,10 @@ private:
 /// beside one CPU-bound process on two cores, one thread ran 1.27 times
 /// faster than two.
 int idle_cores();
+/// The tasks running or ready to run on the machine as this is called, the
+/// caller's running threads included (the fourth field of /proc/loadavg);
+/// empty where the file cannot be read.
+std::optional<int> runnable_tasks();
 
 /// Sets and returns the OpenMP threads: options.threads (at most the
 /// machine's cores; with a ceiling, at most idle_cores() too), else
@@ -314,14 +319,33 @@ int thread_ceiling(const RunOptions &options);
 /// and goes (half a core) can hold back the start of a run that two
 /// threads serve better, and a short run would otherwise spend its first
 /// 2 s on one.
+/// A trial is taken when the machine shows a reason for it: one thread
+/// fewer when more tasks are runnable than there are cores (another
+/// process competes for ours), one more when fewer are (a core is free).
+/// Without a reason it is looked at again 0.25 s later, and taken anyway
+/// once 32 s have passed since the last, for a competitor the count of
+/// runnable tasks does not show (another machine's load on the host's
+/// cores); such a trial, lost, leaves the spacing as it was, so a load
+/// that arrives later is still met within seconds.  So on an idle machine
+/// a run of a few seconds has no trial (its first, of one thread fewer,
+/// cost 3 % of a 2.5 s run), and beside a process that holds a core a run
+/// on one thread does not try two every few seconds.
 class ThreadGovernor
 {
 public:
+  /// What the governor reads of the machine; empty members read the real
+  /// one (tests pass their own).
+  struct Probes
+  {
+    std::function<double()> now; ///< s, a steady clock
+    /// The machine's cores less its runnable tasks (negative: tasks wait
+    /// for a core); an empty optional where it cannot be known.
+    std::function<std::optional<int>()> spare_cores;
+  };
   /// `start`: the threads the run starts with; `most`: never exceeded
   /// (thread_ceiling()); `active`: whether the count may change
-  /// (threads_are_ours()), else `start` is kept as it is;
-  /// `now`: a clock in seconds (steady_clock when empty; tests pass theirs).
-  ThreadGovernor(int start, int most, bool active, std::function<double()> now = {});
+  /// (threads_are_ours()), else `start` is kept as it is.
+  ThreadGovernor(int start, int most, bool active, Probes probes = {});
   /// Called after every step.
   void after_step();
   int threads() const { return phase_ == Phase::trial ? trial_ : current_; }
@@ -343,21 +367,28 @@ private:
   /// Steps of a window of about window_seconds at `per_step` [s].
   static long steps_in_window(double per_step);
   /// Ends a trial (at time `end` [s]): its count kept if it won, else the
-  /// next trial comes twice as late.
+  /// next trial comes twice as late (if the machine gave a reason for it).
   void settle(double end, bool trial_won);
+  /// Whether a trial of trial_ threads is taken at time `end` [s]; sets
+  /// trial_had_reason_.
+  bool worth_trying(double end);
   static constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32; // s, 1, s
+  static constexpr double recheck = 0.25;                                         // s
   Phase phase_ = Phase::settled;
   double trial_per_step_ = 0; ///< s, at trial_
   double trial_deadline_ = 0; ///< s, the longest a trial's window may take and still win
   std::function<double()> now_;
+  std::function<std::optional<int>()> spare_cores_;
   int most_, current_, trial_ = 0, changes_ = 0;
-  bool ours_;                   ///< governed: the count is demvv's to change, up to most_
-  bool try_fewer_ = true;       ///< the direction of the next trial
-  long window_steps_ = 16;      ///< steps in a window, fitted to about 0.2 s
-  long steps_ = 0;              ///< steps taken in this window
-  double window_start_ = 0;     ///< s
-  double settled_per_step_ = 0; ///< s, at current_ in the last window
-  double next_trial_ = 0;       ///< s, when the next trial begins
-  double trial_spacing_ = 2;    ///< s
+  bool ours_;                    ///< governed: the count is demvv's to change, up to most_
+  bool try_fewer_ = true;        ///< the direction of the next trial
+  bool trial_had_reason_ = true; ///< the machine showed one (or could not be probed); else taken after 32 s without
+  long window_steps_ = 16;       ///< steps in a window, fitted to about 0.2 s
+  long steps_ = 0;               ///< steps taken in this window
+  double window_start_ = 0;      ///< s
+  double settled_per_step_ = 0;  ///< s, at current_ in the last window
+  double next_trial_ = 0;        ///< s, when the next trial begins
+  double last_trial_ = 0;        ///< s, when the last trial ended (the start before the first)
+  double trial_spacing_ = 2;     ///< s
 };
 } // namespace demvv

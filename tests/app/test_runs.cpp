@@ -21,7 +21,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <omp.h>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -462,10 +464,24 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
   // by the step's time at the governor's thread count.  Idle, two threads
   // take 0.5 ms a step and one 1 ms; beside a busy process (from `busy_at`
   // on) two take 3 ms, since they wait for the core the other process holds.
+  // Its runnable tasks are the run's threads and the busy process.
   const int threads_before = omp_get_max_threads();
   struct Machine
   {
     double clock = 0, busy_at = 1e9, fewer_seconds = 0;
+    int cores = 2;
+    const demvv::ThreadGovernor *governor = nullptr;
+    demvv::ThreadGovernor::Probes probes()
+    {
+      return {[this] { return clock; },
+              [this]() -> std::optional<int> { return cores - governor->threads() - (clock >= busy_at ? 1 : 0); }};
+    }
+  };
+  const auto governed = [](Machine &m, int start, int most)
+  {
+    auto g = std::make_unique<demvv::ThreadGovernor>(start, most, true, m.probes());
+    m.governor = g.get();
+    return g;
   };
   const auto run = [](Machine &m, demvv::ThreadGovernor &g, double until)
   {
@@ -479,14 +495,18 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
       g.after_step();
     }
   };
-  SECTION("idle: two threads stay, the trials of one cost under 1 % of the time")
+  SECTION("idle: two threads stay, with no trial in a short run and one every 32 s in a long one")
   {
     Machine m;
-    demvv::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
-    run(m, g, 600);
-    CHECK(g.threads() == 2);
-    CHECK(g.changes() == 0);
-    // Trials of 0.2 s every 2, 4, ... 32 s: about 22 in 600 s, 4.4 s.
+    const auto g = governed(m, 2, 2);
+    run(m, *g, 10);
+    CHECK(g->threads() == 2);
+    CHECK(m.fewer_seconds == 0); // no competitor seen: no trial (each cost 0.1 s at half speed)
+    run(m, *g, 600);
+    CHECK(g->threads() == 2);
+    CHECK(g->changes() == 0);
+    // Trials of 0.2 s only every 32 s, for a competitor the probe cannot
+    // see: 18 in 600 s, 3.6 s.
     CHECK(m.fewer_seconds > 0);
     CHECK(m.fewer_seconds < 0.01 * 600);
   }
@@ -494,67 +514,86 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
   {
     Machine m;
     m.busy_at = 0;
-    demvv::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
-    run(m, g, 3);
-    CHECK(g.threads() == 1);
-    run(m, g, 120);
-    CHECK(g.threads() == 1);
-    CHECK(g.changes() == 1);
+    const auto g = governed(m, 2, 2);
+    run(m, *g, 3);
+    CHECK(g->threads() == 1);
+    run(m, *g, 120);
+    CHECK(g->threads() == 1);
+    CHECK(g->changes() == 1);
   }
-  SECTION("a load that arrives mid-run is met within the longest trial spacing")
+  SECTION("a load that arrives mid-run is met within a trial's recheck and windows")
   {
     Machine m;
     m.busy_at = 300;
-    demvv::ThreadGovernor g(2, 2, true, [&] { return m.clock; });
-    run(m, g, 300);
-    CHECK(g.threads() == 2);
-    run(m, g, 300 + 32 + 1);
-    CHECK(g.threads() == 1);
+    const auto g = governed(m, 2, 2);
+    run(m, *g, 300);
+    CHECK(g->threads() == 2);
+    // Seen within 0.25 s; then a window, the trial's and the confirming one
+    // (its steps fitted to 0.2 s at the idle pace, 1.2 s at the busy one).
+    run(m, *g, 302);
+    CHECK(g->threads() == 1);
+    CHECK(g->changes() == 1);
   }
   SECTION("a run that started on one core because another was busy takes the second when it is free")
   {
     Machine m;
-    demvv::ThreadGovernor g(1, 2, true, [&] { return m.clock; });
-    run(m, g, 1); // the first trial of one more thread comes after 0.5 s
-    CHECK(g.threads() == 2);
-    CHECK(g.changes() == 1);
-    run(m, g, 60);
-    CHECK(g.threads() == 2);
+    const auto g = governed(m, 1, 2);
+    run(m, *g, 1); // the first trial of one more thread comes after 0.5 s
+    CHECK(g->threads() == 2);
+    CHECK(g->changes() == 1);
+    run(m, *g, 60);
+    CHECK(g->threads() == 2);
   }
   SECTION("a run that started below its ceiling tries one more thread first")
   {
     Machine m;
+    m.cores = 3;
     omp_set_num_threads(3);
-    demvv::ThreadGovernor g(2, 3, true, [&] { return m.clock; });
-    while (m.clock < 0.9 && g.threads() == 2)
+    const auto g = governed(m, 2, 3);
+    while (m.clock < 0.9 && g->threads() == 2)
     {
       m.clock += 1e-3;
-      g.after_step();
+      g->after_step();
     }
-    CHECK(g.threads() == 3); // the trial, within 0.9 s
+    CHECK(g->threads() == 3); // the trial, within 0.9 s
   }
-  SECTION("a run that started on one core beside a busy process keeps it, its trials of two costing little")
+  SECTION("a run that started on one core beside a busy process keeps it, trying two only every 32 s")
   {
     Machine m;
     m.busy_at = 0;
-    demvv::ThreadGovernor g(1, 2, true, [&] { return m.clock; });
+    const auto g = governed(m, 1, 2);
+    run(m, *g, 120);
+    CHECK(g->threads() == 1);
+    CHECK(g->changes() == 0);
+    // No free core seen, so a trial only every 32 s: three in 120 s.  A
+    // trial is the 0.2 s window's steps (200 at 1 ms), taken at 3 ms: 0.6
+    // s if it ran them all, but it ends once past 0.18 s (90 % of the 0.2
+    // s its steps took on one thread: it can no longer win), at 61 steps,
+    // 0.183 s.  (Before the probe: a trial at 0.5 s, then after 4, 8, 16,
+    // 32, 32 s, six.)
+    CHECK(m.fewer_seconds > 120 - 3 * 0.19);
+    CHECK(m.fewer_seconds < 120 - 0.3);
+  }
+  SECTION("without a probe of the machine the trials keep their spacing")
+  {
+    Machine m;
+    m.busy_at = 0;
+    demvv::ThreadGovernor::Probes blind = m.probes();
+    blind.spare_cores = [] { return std::optional<int>(); };
+    demvv::ThreadGovernor g(1, 2, true, blind);
+    m.governor = &g;
     run(m, g, 120);
     CHECK(g.threads() == 1);
-    CHECK(g.changes() == 0);
-    // A trial is the 0.2 s window's steps (200 at 1 ms), taken at 3 ms:
-    // 0.6 s if it ran them all, but it ends once past 0.18 s (90 % of the
-    // 0.2 s its steps took on one thread: it can no longer win), at 61
-    // steps, 0.183 s.  The first at 0.5 s, each next after 4, 8, 16, 32, 32
-    // s: six in 120 s, 1.1 s on two threads (the bound allows eight of
-    // 0.19 s; whole trials would take 3.6 s).
+    // The six trials of two threads: 0.5 s, then after 4, 8, 16, 32, 32 s.
+    CHECK(m.fewer_seconds < 120 - 5 * 0.17);
     CHECK(m.fewer_seconds > 120 - 8 * 0.19);
-    CHECK(m.fewer_seconds < 120 - 0.3);
   }
   SECTION("a count the user fixed is never changed")
   {
     Machine m;
     m.busy_at = 0;
-    demvv::ThreadGovernor g(2, 2, false, [&] { return m.clock; });
+    demvv::ThreadGovernor g(2, 2, false, m.probes());
+    m.governor = &g;
     run(m, g, 60);
     CHECK(g.threads() == 2);
     CHECK(g.changes() == 0);
