@@ -19,6 +19,10 @@
 #
 # GNU/Linux: the half load times itself with `date +%s%N` and `sleep 0.05`.
 #
+# The table ends with each ratio's median over the rounds of a load and a
+# distribution-free interval for it: nine rounds give it 96 % coverage,
+# three only 75 % (a single round under a load scatters by 10-30 %).
+#
 # usage: bench/identical_work.sh [DEMVV] [STEPS] [ROUNDS] [LOADS]
 #   defaults: build/demvv 5000 3 "idle half full"      (from the repository root)
 set -eu
