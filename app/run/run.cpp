@@ -572,7 +572,7 @@ ThreadGovernor::ThreadGovernor(int start, int most, bool active, Probes probes)
 
 nlohmann::json ThreadGovernor::to_json() const
 {
-  nlohmann::json j = {{"governed", ours_}, {"at_end", threads()}, {"changes", changes_}};
+  nlohmann::json j = {{"governed", ours_}, {"at_end", threads()}, {"changes", changes_}, {"trials", trials_}};
   if (ours_)
     j["most"] = most_;
   return j;
@@ -634,6 +634,7 @@ void ThreadGovernor::after_step()
         break;
       }
       use(trial_);
+      ++trials_;
       trial_deadline_ = (1 - gain) * settled_per_step_ * double(window_steps_);
       phase_ = Phase::trial;
     }

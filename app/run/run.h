@@ -351,8 +351,11 @@ public:
   int threads() const { return phase_ == Phase::trial ? trial_ : current_; }
   /// How often the count changed so far.
   int changes() const { return changes_; }
+  /// How many trials were taken so far (won or lost).
+  int trials() const { return trials_; }
   /// For a run's summary: whether the count was governed (could change),
-  /// up to how many threads, how often it changed, the count at the end.
+  /// up to how many threads, how many trials it took and how often the
+  /// count changed, the count at the end.
   nlohmann::json to_json() const;
 
 private:
@@ -379,7 +382,7 @@ private:
   double trial_deadline_ = 0; ///< s, the longest a trial's window may take and still win
   std::function<double()> now_;
   std::function<std::optional<int>()> spare_cores_;
-  int most_, current_, trial_ = 0, changes_ = 0;
+  int most_, current_, trial_ = 0, changes_ = 0, trials_ = 0;
   bool ours_;                    ///< governed: the count is demvv's to change, up to most_
   bool try_fewer_ = true;        ///< the direction of the next trial
   bool trial_had_reason_ = true; ///< the machine showed one (or could not be probed); else taken after 32 s without

@@ -502,6 +502,7 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
     run(m, *g, 10);
     CHECK(g->threads() == 2);
     CHECK(m.fewer_seconds == 0); // no competitor seen: no trial (each cost 0.1 s at half speed)
+    CHECK(g->trials() == 0);
     run(m, *g, 600);
     CHECK(g->threads() == 2);
     CHECK(g->changes() == 0);
@@ -573,6 +574,8 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
     // 32, 32 s, six.)
     CHECK(m.fewer_seconds > 120 - 3 * 0.19);
     CHECK(m.fewer_seconds < 120 - 0.3);
+    CHECK(g->trials() == 3);
+    CHECK(g->to_json()["trials"] == 3);
   }
   SECTION("without a probe of the machine the trials keep their spacing")
   {
@@ -585,6 +588,7 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
     run(m, g, 120);
     CHECK(g.threads() == 1);
     // The six trials of two threads: 0.5 s, then after 4, 8, 16, 32, 32 s.
+    CHECK(g.trials() == 6);
     CHECK(m.fewer_seconds < 120 - 5 * 0.17);
     CHECK(m.fewer_seconds > 120 - 8 * 0.19);
   }
