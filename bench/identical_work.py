@@ -224,6 +224,21 @@ def median_interval(values):
     return mid, x[k - 1], x[n - k], coverage(k)
 
 
+PEERS = ("liggghts", "liggghts_narrow")
+
+
+def peer_ranks(asked):
+    """The LIGGGHTS ranks a demvv thread count is set against: its own
+    count; demvv's default against 2 ranks."""
+    return "2" if asked == "default" else asked
+
+
+def faster_peer(rate, load, asked, rnd):
+    """The faster of the LIGGGHTS runs (both skins) that demvv's `asked`
+    threads are set against in round `rnd`; None when neither ran."""
+    return max((p for p in (rate.get((load, e, peer_ranks(asked), rnd)) for e in PEERS) if p), default=None)
+
+
 def summary(rate):
     """Over the rounds of each load: demvv against the faster LIGGGHTS run
     of the same round (1 thread against 1 rank, 2 threads and the default
@@ -231,21 +246,15 @@ def summary(rate):
     1 thread in the same round, each as the median ratio and its interval."""
     loads = sorted({k[0] for k in rate}, key=["idle", "half", "full"].index)
     rounds = sorted({k[3] for k in rate}, key=int)
-    def faster_peer(load, ranks, rnd):
-        peers = [rate.get((load, e, ranks, rnd)) for e in ("liggghts", "liggghts_narrow")]
-        return max((p for p in peers if p), default=None)
-    pairs = [("demvv 1 / LIGGGHTS 1 (the faster)", lambda l, r: (rate.get((l, "demvv", "1", r)), faster_peer(l, "1", r))),
-             ("demvv 2 / LIGGGHTS 2 (the faster)", lambda l, r: (rate.get((l, "demvv", "2", r)), faster_peer(l, "2", r))),
-             ("demvv default / LIGGGHTS 2 (the faster)",
-              lambda l, r: (rate.get((l, "demvv", "default", r)), faster_peer(l, "2", r))),
-             ("demvv 2 / demvv 1", lambda l, r: (rate.get((l, "demvv", "2", r)), rate.get((l, "demvv", "1", r)))),
-             ("demvv default / demvv 1",
-              lambda l, r: (rate.get((l, "demvv", "default", r)), rate.get((l, "demvv", "1", r))))]
+    against = [("demvv %s / LIGGGHTS %s (the faster)" % (a, peer_ranks(a)), a,
+                lambda l, r, a=a: faster_peer(rate, l, a, r)) for a in ("1", "2", "default")]
+    against += [("demvv %s / demvv 1" % a, a, lambda l, r: rate.get((l, "demvv", "1", r))) for a in ("2", "default")]
     print("| load | ratio | rounds | median | interval of the median | its coverage |")
     print("|---|---|---|---|---|---|")
     for load in loads:
-        for name, pick in pairs:
-            ratios = [a / b for a, b in (pick(load, r) for r in rounds) if a and b]
+        for name, asked, reference in against:
+            ratios = [d / ref for d, ref in ((rate.get((load, "demvv", asked, r)), reference(load, r)) for r in rounds)
+                      if d and ref]
             if ratios:
                 mid, lo, hi, cover = median_interval(ratios)
                 print("| %s | %s | %d | %.2f | %.2f-%.2f | %.0f %% |" % (load, name, len(ratios), mid, lo, hi,
@@ -268,15 +277,14 @@ def table(path):
     rate = {(r[0], r[1], r[2], r[3]): float(r[4]) for r in runs}
     print()
     for load, _, asked, rnd in sorted({(r[0], "", r[2], r[3]) for r in runs}):
-        # demvv's default thread count is set against LIGGGHTS on 2 ranks
         d = rate.get((load, "demvv", asked, rnd))
-        ranks = "2" if asked == "default" else asked
-        peers = {e: rate.get((load, e, ranks, rnd)) for e in ("liggghts", "liggghts_narrow")}
+        ranks = peer_ranks(asked)
+        peers = {e: rate.get((load, e, ranks, rnd)) for e in PEERS}
         ratios = ["against %s %.2f" % (e, d / l) for e, l in peers.items() if d and l]
         if ratios:
-            best = max(l for l in peers.values() if l)
             print("%s, demvv %s thread(s) against LIGGGHTS %s rank(s), round %s: demvv / LIGGGHTS %s; "
-                  "against the faster %.2f" % (load, asked, ranks, rnd, ", ".join(ratios), d / best))
+                  "against the faster %.2f" % (load, asked, ranks, rnd, ", ".join(ratios),
+                                               d / faster_peer(rate, load, asked, rnd)))
     print()
     summary(rate)
     c0, s0 = float(runs[0][6]), float(runs[0][7])

@@ -475,21 +475,21 @@ void RunFiles::resume(const nlohmann::json &state)
     paraview_->restore(state.at("paraview"));
 }
 
-std::optional<int> runnable_tasks()
+std::optional<int> spare_cores()
 {
   std::ifstream in("/proc/loadavg");
   double minute = 0, five = 0, fifteen = 0;
   std::string tasks;
   if (!(in >> minute >> five >> fifteen >> tasks))
     return std::nullopt;
-  return std::atoi(tasks.c_str()); // "runnable/total", this process included
+  return omp_get_num_procs() - std::atoi(tasks.c_str()); // "runnable/total", this process included
 }
 
 int idle_cores()
 {
   const int cores = omp_get_num_procs();
-  const std::optional<int> runnable = runnable_tasks();
-  return runnable ? std::clamp(cores - (*runnable - 1), 1, cores) : cores;
+  const std::optional<int> spare = spare_cores(); // the caller's one running thread among the runnable
+  return spare ? std::clamp(*spare + 1, 1, cores) : cores;
 }
 
 bool threads_are_ours(const RunOptions &options)
@@ -556,11 +556,7 @@ ThreadGovernor::ThreadGovernor(int start, int most, bool active, Probes probes)
     now_ = [start = std::chrono::steady_clock::now()]
     { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   if (!spare_cores_)
-    spare_cores_ = []() -> std::optional<int>
-    {
-      const std::optional<int> runnable = runnable_tasks();
-      return runnable ? std::optional<int>(omp_get_num_procs() - *runnable) : std::nullopt;
-    };
+    spare_cores_ = demvv::spare_cores;
   begin_window();
   last_trial_ = window_start_;
   // A run started below its ceiling (the load held it back) first tries one

@@ -277,10 +277,11 @@ private:
 /// beside one CPU-bound process on two cores, one thread ran 1.27 times
 /// faster than two.
 int idle_cores();
-/// The tasks running or ready to run on the machine as this is called, the
-/// caller's running threads included (the fourth field of /proc/loadavg);
-/// empty where the file cannot be read.
-std::optional<int> runnable_tasks();
+/// The machine's cores less the tasks running or ready to run as this is
+/// called, the caller's running threads included (the fourth field of
+/// /proc/loadavg); negative when tasks wait for a core, empty where the
+/// file cannot be read.
+std::optional<int> spare_cores();
 
 /// Sets and returns the OpenMP threads: options.threads (at most the
 /// machine's cores; with a ceiling, at most idle_cores() too), else
@@ -337,10 +338,8 @@ public:
   /// one (tests pass their own).
   struct Probes
   {
-    std::function<double()> now; ///< s, a steady clock
-    /// The machine's cores less its runnable tasks (negative: tasks wait
-    /// for a core); an empty optional where it cannot be known.
-    std::function<std::optional<int>()> spare_cores;
+    std::function<double()> now;                     ///< s, a steady clock
+    std::function<std::optional<int>()> spare_cores; ///< as demvv::spare_cores()
   };
   /// `start`: the threads the run starts with; `most`: never exceeded
   /// (thread_ceiling()); `active`: whether the count may change
