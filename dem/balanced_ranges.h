@@ -47,6 +47,8 @@ public:
   }
 
   int ranges() const { return static_cast<int>(seconds_.size()); }
+  /// The item count the ranges cut (that of the last prepare).
+  std::size_t items() const { return items_; }
   std::size_t begin(int r) const { return cuts_[static_cast<std::size_t>(r)]; }
   std::size_t end(int r) const { return cuts_[static_cast<std::size_t>(r) + 1]; }
 

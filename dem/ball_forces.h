@@ -16,6 +16,7 @@
 // so threads that own different balls never write the same memory.
 #pragma once
 
+#include "dem/balanced_ranges.h"
 #include "dem/contact_resolve.h"
 #include "dem/law_linear.h"
 #include "dem/particles.h"
@@ -36,6 +37,12 @@ struct BallForces
   double dt;                                  ///< s, the step that produced the displacement since the last pass
   std::vector<double> &row_bound;             ///< 1/s^2, per ball, out
   std::vector<double> &wall_power;            ///< W, per ball, sum over walls of F_wall->ball . v_wall, out
+  /// The balls cut into one range per thread (balanced_ranges.h): the pass
+  /// sums each range's balls and records its time; the integration that
+  /// follows advances the same balls on the same thread, so that a ball's
+  /// resultant, and the position it gives the next pass, stay in the cache
+  /// of the core that uses them.  The step moves the cuts after both.
+  BalancedRanges &ranges;
 
   // The sums are kept as three doubles, not Vec3: the pass then compiles
   // to scalar multiply-adds instead of mixing two-lane and scalar halves
@@ -54,14 +61,18 @@ struct BallForces
   {
     ParticleStore &P = particles;
     double power = 0;
+    const std::uint64_t near = walls.near_walls(p);
     for (const WallIndex w : active_walls)
     {
+      if (w < WallSet::marked_walls && !((near >> w) & 1))
+        continue; // clear of it until the next neighbour build (walls.h)
       ContactState *kept = walls.history_of(w, p);
-      if (walls.clear_of(w, P.position[p], P.radius[p]) && !(kept && kept->touching()))
+      if (!(kept && kept->touching()) && walls.clear_of(w, P.position[p], P.radius[p]))
         continue;
       ContactState fresh; // a ball that never touched this wall starts at rest
       ContactState &state = kept ? *kept : fresh;
-      const ContactGeometry g = walls.geometry(w, P.position[p], P.radius[p], P.velocity[p], P.spin[p]);
+      const WallSet::Touch touch = walls.touch(w, P.position[p], P.radius[p], P.velocity[p], P.spin[p]);
+      const ContactGeometry &g = touch.geometry;
       const WallProps &wp = walls[w].props;
       const ContactParams params{in_series(P.kn[p], wp.kn), in_series(P.ks[p], wp.ks),
                                  std::min(P.friction[p], wp.friction)};
@@ -81,7 +92,7 @@ struct BallForces
       }
       const double sb = arm_factor(g.arm_second, P.inv_radius[p]) * P.sqrt_shear_mobility[p];
       bound += stability_row_term(params.kn, params.ks, P.inv_mass[p], sb * sb, 0.0, 0.0);
-      power += r.force.dot(walls.surface_velocity(w, P.position[p]));
+      power += r.force.dot(touch.surface_velocity);
     }
     P.force[p] = Vec3(f[0], f[1], f[2]);
     P.torque[p] = Vec3(t[0], t[1], t[2]);

@@ -125,8 +125,10 @@ public:
   // list), then its walls (ball_forces.h).  The sums keep that order, so
   // results do not depend on the thread count.  Each loop's items are cut
   // into one contiguous range per thread, the cuts moved from pass to pass
-  // towards equal times (balanced_ranges.h); breaks and energies to retire
-  // are collected per range, so that ranges in order are entries in order.
+  // towards equal times (balanced_ranges.h): the entries' here, the balls'
+  // by the step, whose integration advances the same ranges (BallForces).
+  // Breaks and energies to retire are collected per range, so that ranges
+  // in order are entries in order.
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
@@ -140,7 +142,7 @@ public:
     law_.prepare(dt);
     const int ranges = omp_get_max_threads();
     contact_ranges_.prepare(table.size(), ranges);
-    ball_ranges_.prepare(static_cast<std::size_t>(p.size()), ranges);
+    balls.ranges.prepare(static_cast<std::size_t>(p.size()), ranges);
     events_.resize(static_cast<std::size_t>(ranges));
     double largest = 0;
 #pragma omp parallel reduction(max : largest)
@@ -160,8 +162,8 @@ public:
       for (int r = omp_get_thread_num(); r < ranges; r += team)
       {
         const double start = omp_get_wtime();
-        const auto last_ball = static_cast<Index>(ball_ranges_.end(r));
-        for (auto b = static_cast<Index>(ball_ranges_.begin(r)); b < last_ball; ++b)
+        const auto last_ball = static_cast<Index>(balls.ranges.end(r));
+        for (auto b = static_cast<Index>(balls.ranges.begin(r)); b < last_ball; ++b)
         {
           double f[3], t[3] = {0, 0, 0};
           balls.weight(b, f);
@@ -192,11 +194,10 @@ public:
           }
           largest = std::max(largest, balls.finish(b, f, t, bound));
         }
-        ball_ranges_.record(r, omp_get_wtime() - start);
+        balls.ranges.record(r, omp_get_wtime() - start);
       }
     }
     contact_ranges_.rebalance();
-    ball_ranges_.rebalance();
     // Each range's entries ascend, and the ranges too: this is entry order
     // on any thread count.
     for (const PassEvents &events : events_)
@@ -320,9 +321,9 @@ private:
   static_assert(Law::state_fields.size() <= LawState::capacity, "a law's history must fit a LawState slot");
 
   Law law_;
-  std::vector<PairLoad> loads_;                 ///< per entry, rewritten by every pass
-  std::vector<PassEvents> events_;              ///< per range, reused from step to step
-  BalancedRanges contact_ranges_, ball_ranges_; ///< each loop's items, one range per thread
+  std::vector<PairLoad> loads_;    ///< per entry, rewritten by every pass
+  std::vector<PassEvents> events_; ///< per range, reused from step to step
+  BalancedRanges contact_ranges_;  ///< the entries, one range per thread
 };
 
 /// The registry: one row per law keyword (law_registry.cpp).

@@ -48,6 +48,9 @@ public:
   bool stale(const ParticleStore &particles) const;
 
   const std::vector<Pair> &pairs() const { return pairs_; }
+  /// The ball centres at the last build [m], from which moved_too_far()
+  /// measures.
+  const std::vector<Vec3> &reference() const { return reference_; }
   std::size_t rebuilds() const { return rebuilds_; }
 
   /// Frees the candidates and the cells once their user has taken the

@@ -185,6 +185,7 @@ void Simulation::refresh_contacts()
   // made, so that peak memory holds only the larger.
   model_->release_scratch();
   neighbors_.rebuild(particles_);
+  walls_.mark_near(neighbors_.reference(), particles_.radius, neighbors_.skin());
   contacts_.rebuild(neighbors_.pairs(), particles_);
   neighbors_.release_candidates();
   rebuild_requested_ = false;
@@ -234,6 +235,13 @@ void Simulation::compute_forces()
 {
   if (rebuild_requested_ || neighbors_.stale(particles_))
     refresh_contacts();
+  else if (walls_.near_stale())
+  {
+    // The walls moved a quarter skin since the marks: marked anew from the
+    // centres the neighbour list measures from (walls.h), which no ball has
+    // left by more than half a skin.
+    walls_.mark_near(neighbors_.reference(), particles_.radius, neighbors_.skin());
+  }
   if (contacts_.take_changed())
   {
     // Pairs were added (ensure) or the table rebuilt: the precomputed pair
@@ -244,7 +252,8 @@ void Simulation::compute_forces()
   for (WallIndex w = 0; w < walls_.size(); ++w)
     if (walls_[w].enabled)
       active_walls_.push_back(w);
-  const BallForces balls{particles_, walls_, active_walls_, settings_.gravity, dt_prev_, row_bound_, wall_power_};
+  const BallForces balls{particles_, walls_,     active_walls_, settings_.gravity,
+                         dt_prev_,   row_bound_, wall_power_,   ball_ranges_};
   broken_.clear();
   walls_.open_pass(omp_get_max_threads());
   // The bound of the contacts that exist; infinite when none carries force.
@@ -326,61 +335,75 @@ Simulation::BallAdvance Simulation::advance_balls()
   const double *const f = P.force.front().data();
   const double *const t = P.torque.front().data();
 
-#pragma omp parallel for schedule(static) reduction(min : first_bad) reduction(|| : moved)
-  for (Index p = 0; p < n; ++p)
+  // Each thread advances the balls whose resultants it summed in the pass
+  // (BallForces::ranges); the arithmetic of a ball does not depend on the
+  // thread.  Without a pass over these balls (none yet), equal shares.
+  const BalancedRanges &ranges = ball_ranges_;
+  const bool summed = ranges.items() == static_cast<std::size_t>(n) && ranges.ranges() > 0;
+#pragma omp parallel reduction(min : first_bad) reduction(|| : moved)
   {
-    BallEnergy &e = ball_energy_[p];
-    const std::size_t b = 3 * static_cast<std::size_t>(p);
-    // A held ball has zero inverse mass (inertia), so the kick leaves it
-    // alone; the flags below only route its energy to the boundary work its
-    // constraint does.
-    const double free_v = P.holds_velocity(p) ? 0.0 : 1.0, free_w = P.holds_spin(p) ? 0.0 : 1.0;
-    const double im = P.inv_mass[p] * kick, ii = P.inv_inertia[p] * kick, m = P.mass[p];
-    double power = wall_power_[p], damping = 0, body = 0, held = 0, energy = 0, speed2 = 0, spin2 = 0;
-    for (int k = 0; k < 3; ++k)
+    const int team = omp_get_num_threads(), count = summed ? ranges.ranges() : team;
+    for (int r = omp_get_thread_num(); r < count; r += team)
     {
-      const double vo = v[b + k], wo = w[b + k];
-      // PFC local damping: the component loses alpha |F| against the sign of
-      // its velocity, nothing at zero velocity.  Two one-sided selects
-      // compile to masks, not branches (a velocity's sign is a coin toss for
-      // the branch predictor).  Undamped, f_damp = 0 and its terms vanish.
-      double f_damp = 0, t_damp = 0;
-      if constexpr (damped)
+      const auto share = [&](int k)
+      { return static_cast<Index>(summed ? ranges.begin(k) : static_cast<std::size_t>(n) * k / count); };
+      const Index last = share(r + 1);
+      for (Index p = share(r); p < last; ++p)
       {
-        const double fd = alpha * std::abs(f[b + k]), td = alpha * std::abs(t[b + k]);
-        f_damp = (vo > 0 ? fd : 0.0) - (vo < 0 ? fd : 0.0);
-        t_damp = (wo > 0 ? td : 0.0) - (wo < 0 ? td : 0.0);
+        BallEnergy &e = ball_energy_[p];
+        const std::size_t b = 3 * static_cast<std::size_t>(p);
+        // A held ball has zero inverse mass (inertia), so the kick leaves it
+        // alone; the flags below only route its energy to the boundary work its
+        // constraint does.
+        const double free_v = P.holds_velocity(p) ? 0.0 : 1.0, free_w = P.holds_spin(p) ? 0.0 : 1.0;
+        const double im = P.inv_mass[p] * kick, ii = P.inv_inertia[p] * kick, m = P.mass[p];
+        double power = wall_power_[p], damping = 0, body = 0, held = 0, energy = 0, speed2 = 0, spin2 = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const double vo = v[b + k], wo = w[b + k];
+          // PFC local damping: the component loses alpha |F| against the sign of
+          // its velocity, nothing at zero velocity.  Two one-sided selects
+          // compile to masks, not branches (a velocity's sign is a coin toss for
+          // the branch predictor).  Undamped, f_damp = 0 and its terms vanish.
+          double f_damp = 0, t_damp = 0;
+          if constexpr (damped)
+          {
+            const double fd = alpha * std::abs(f[b + k]), td = alpha * std::abs(t[b + k]);
+            f_damp = (vo > 0 ? fd : 0.0) - (vo < 0 ? fd : 0.0);
+            t_damp = (wo > 0 ? td : 0.0) - (wo < 0 ? td : 0.0);
+          }
+          const double vn = vo + (f[b + k] - f_damp) * im;
+          const double wn = wo + (t[b + k] - t_damp) * ii;
+          const double vm = 0.5 * (vo + vn), wm = 0.5 * (wo + wn);
+          if constexpr (damped)
+            damping += free_v * f_damp * vm + free_w * t_damp * wm;
+          if constexpr (weighted)
+            body += free_v * m * gravity[k] * vm;
+          // A held ball's constraint does the work the resultant would have done.
+          const double resultant = weighted ? f[b + k] - m * gravity[k] : f[b + k];
+          held += (1.0 - free_v) * resultant * vo + (1.0 - free_w) * t[b + k] * wo;
+          if constexpr (kinetic)
+            energy += 0.5 * m * vo * (first_step ? vo : vn) + 0.5 * P.inertia[p] * wo * (first_step ? wo : wn);
+          v[b + k] = vn;
+          w[b + k] = wn;
+          x[b + k] += vn * dt;
+          speed2 += vn * vn;
+          spin2 += wn * wn;
+        }
+        power -= held;
+        e.boundary += power * kick;
+        if constexpr (damped)
+          e.damping += damping * kick;
+        if constexpr (weighted)
+          e.body += body * kick;
+        if constexpr (kinetic)
+          e.kinetic = energy;
+        const double half_radius = 0.5 * P.radius[p];
+        if (!(speed2 * dt * dt <= half_radius * half_radius) || !std::isfinite(spin2))
+          first_bad = std::min(first_bad, p);
+        moved = moved || neighbors_.moved_too_far(p, P.position[p]);
       }
-      const double vn = vo + (f[b + k] - f_damp) * im;
-      const double wn = wo + (t[b + k] - t_damp) * ii;
-      const double vm = 0.5 * (vo + vn), wm = 0.5 * (wo + wn);
-      if constexpr (damped)
-        damping += free_v * f_damp * vm + free_w * t_damp * wm;
-      if constexpr (weighted)
-        body += free_v * m * gravity[k] * vm;
-      // A held ball's constraint does the work the resultant would have done.
-      const double resultant = weighted ? f[b + k] - m * gravity[k] : f[b + k];
-      held += (1.0 - free_v) * resultant * vo + (1.0 - free_w) * t[b + k] * wo;
-      if constexpr (kinetic)
-        energy += 0.5 * m * vo * (first_step ? vo : vn) + 0.5 * P.inertia[p] * wo * (first_step ? wo : wn);
-      v[b + k] = vn;
-      w[b + k] = wn;
-      x[b + k] += vn * dt;
-      speed2 += vn * vn;
-      spin2 += wn * wn;
     }
-    power -= held;
-    e.boundary += power * kick;
-    if constexpr (damped)
-      e.damping += damping * kick;
-    if constexpr (weighted)
-      e.body += body * kick;
-    if constexpr (kinetic)
-      e.kinetic = energy;
-    const double half_radius = 0.5 * P.radius[p];
-    if (!(speed2 * dt * dt <= half_radius * half_radius) || !std::isfinite(spin2))
-      first_bad = std::min(first_bad, p);
-    moved = moved || neighbors_.moved_too_far(p, P.position[p]);
   }
   return {first_bad, moved};
 }
@@ -402,6 +425,7 @@ void Simulation::integrate(bool measure_kinetic)
      {&Simulation::advance_balls<true, true, false>, &Simulation::advance_balls<true, true, true>}}};
   const bool damped = settings_.local_damping != 0, weighted = !settings_.gravity.isZero(0);
   const BallAdvance advanced = (this->*loops[damped][weighted][measure_kinetic])();
+  ball_ranges_.rebalance();
   const Index n = particles_.size(), first_bad = advanced.first_bad;
   const double dt = dt_;
   const ParticleStore &P = particles_;

@@ -315,6 +315,7 @@ private:
   double lone_bound_max_ = 0;           ///< 1/s^2, largest row bound of one contact with a ball's own stiffness
   std::vector<double> wall_power_;      ///< W, sum over walls of F_wall->ball . v_wall
   std::vector<WallIndex> active_walls_; ///< enabled walls, refreshed each step
+  BalancedRanges ball_ranges_;          ///< the balls, one range per thread, of the pass and the integration
 
   std::vector<BallEnergy> ball_energy_;
   double initial_energy_ = 0;

@@ -83,7 +83,7 @@ double exact_max_eigenvalue(const Simulation &sim)
       const ContactState &s = walls.state(w, b);
       if (!walls[w].enabled || !s.touching())
         continue;
-      const ContactGeometry g = walls.geometry(w, p.position[b], p.radius[b], p.velocity[b], p.spin[b]);
+      const ContactGeometry g = walls.touch(w, p.position[b], p.radius[b], p.velocity[b], p.spin[b]).geometry;
       // The wall is the first entity; index -1 drops its (infinite-mass) dofs.
       add_contact(K, -1, b, g.normal, 0, g.arm_second, in_series(p.kn[b], walls[w].props.kn),
                   in_series(p.ks[b], walls[w].props.ks));

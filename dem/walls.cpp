@@ -34,56 +34,8 @@ WallIndex WallSet::find(const std::string &name) const
   return -1;
 }
 
-namespace
-{
-/// Outward radial unit vector and radial distance of x from a cylinder axis.
-std::pair<Vec3, double> radial_of(const Wall &c, const Vec3 &x)
-{
-  const Vec3 radial = radial_offset(c, x);
-  const double rho = radial.norm();
-  // On the axis every direction is radial; pick one that is normal to it.
-  const Vec3 outward = rho > 0 ? Vec3(radial / rho) : c.direction.unitOrthogonal();
-  return {outward, rho};
-}
-} // namespace
-
 // The radial distance alone (no unit vector), the same rho as radial_of's.
 double WallSet::cylinder_clearance(const Wall &c, const Vec3 &x) { return c.radius - radial_offset(c, x).norm(); }
-
-ContactGeometry WallSet::geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v, const Vec3 &omega) const
-{
-  const Wall &wall = walls_[w];
-  ContactGeometry g;
-  Vec3 wall_velocity = wall.velocity;
-  double gap;
-  if (wall.shape == WallShape::plane)
-  {
-    g.normal = wall.direction;
-    gap = (x - wall.point).dot(wall.direction);
-  }
-  else
-  {
-    const auto [outward, rho] = radial_of(wall, x);
-    g.normal = -outward;
-    gap = wall.radius - rho;
-    wall_velocity += wall.radial_velocity * outward;
-  }
-  g.overlap = r - gap;
-  g.arm_first = 0;
-  g.arm_second = r - 0.5 * g.overlap;
-  g.velocity_difference = v - wall_velocity;
-  g.spin_first = Vec3::Zero();
-  g.spin_second = omega;
-  return g;
-}
-
-Vec3 WallSet::surface_velocity(WallIndex w, const Vec3 &x) const
-{
-  const Wall &wall = walls_[w];
-  if (wall.shape == WallShape::plane)
-    return wall.velocity;
-  return wall.velocity + wall.radial_velocity * radial_of(wall, x).first;
-}
 
 void WallSet::set_enabled(WallIndex w, bool enabled)
 {
@@ -100,6 +52,34 @@ void WallSet::advance(double dt)
     w.point += w.velocity * dt;
     w.radius += w.radial_velocity * dt;
   }
+}
+
+void WallSet::mark_near(const std::vector<Vec3> &centres, const std::vector<double> &radii, double reach)
+{
+  near_.assign(centres.size(), 0);
+  const WallIndex marked = std::min(size(), marked_walls);
+  for (std::size_t p = 0; p < centres.size(); ++p)
+    for (WallIndex w = 0; w < marked; ++w)
+      if (clearance(w, centres[p]) < radii[p] + reach)
+        near_[p] |= std::uint64_t(1) << w;
+  marked_at_ = walls_;
+  near_reach_ = reach;
+  ++near_marks_;
+}
+
+bool WallSet::near_stale() const
+{
+  if (marked_at_.size() != walls_.size())
+    return true;
+  const double allowed = 0.25 * near_reach_;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+  {
+    const Wall &now = walls_[w], &then = marked_at_[w];
+    if (now.shape != then.shape || now.direction != then.direction ||
+        !((now.point - then.point).norm() + std::abs(now.radius - then.radius) <= allowed))
+      return true;
+  }
+  return false;
 }
 
 void WallSet::index_kept()

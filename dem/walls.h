@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dem
@@ -65,6 +66,16 @@ inline Vec3 radial_offset(const Wall &c, const Vec3 &x)
   return d - d.dot(c.direction) * c.direction;
 }
 
+/// Outward radial unit vector and radial distance of x from a cylinder axis.
+DEM_HOT_INLINE std::pair<Vec3, double> radial_of(const Wall &c, const Vec3 &x)
+{
+  const Vec3 radial = radial_offset(c, x);
+  const double rho = radial.norm();
+  // On the axis every direction is radial; pick one that is normal to it.
+  const Vec3 outward = rho > 0 ? Vec3(radial / rho) : c.direction.unitOrthogonal();
+  return {outward, rho};
+}
+
 class WallSet
 {
 public:
@@ -82,8 +93,8 @@ public:
   }
 
   /// Whether a ball (centre x, radius r) is clear of wall w, exactly
-  /// clearance(w, x) >= r; every ball asks every wall at every step, so a
-  /// ball far inside a cylinder is answered without the square root: its
+  /// clearance(w, x) >= r; every ball near a cylinder (near_walls) asks it
+  /// at every step, so a ball inside it is answered without the square root: its
   /// squared radial distance below (R - r)^2 by a relative 2e-9, far more
   /// than the round-off of rho, R - rho and the squares (a few 1e-16 of R)
   /// while R - r > 1e-6 R, gives what the exact test would.
@@ -98,12 +109,45 @@ public:
     return cylinder_clearance(wall, x) >= r;
   }
 
-  /// Geometry of the contact of a ball (centre x, radius r, velocity v, spin
-  /// omega) with wall w.  The wall is the first entity.
-  ContactGeometry geometry(WallIndex w, const Vec3 &x, double r, const Vec3 &v, const Vec3 &omega) const;
-
-  /// Velocity of the surface of wall w at the point nearest to x [m/s].
-  Vec3 surface_velocity(WallIndex w, const Vec3 &x) const;
+  /// A ball's contact with a wall: its geometry (the wall is the first
+  /// entity) and the velocity of the wall's surface at the point nearest
+  /// the ball's centre [m/s], which the boundary work needs; one radial
+  /// direction serves both.
+  struct Touch
+  {
+    ContactGeometry geometry;
+    Vec3 surface_velocity;
+  };
+  /// The contact of a ball (centre x, radius r, velocity v, spin omega)
+  /// with wall w.
+  DEM_HOT_INLINE Touch touch(WallIndex w, const Vec3 &x, double r, const Vec3 &v, const Vec3 &omega) const
+  {
+    const Wall &wall = walls_[w];
+    Touch t;
+    ContactGeometry &g = t.geometry;
+    Vec3 &wall_velocity = t.surface_velocity;
+    wall_velocity = wall.velocity;
+    double gap;
+    if (wall.shape == WallShape::plane)
+    {
+      g.normal = wall.direction;
+      gap = (x - wall.point).dot(wall.direction);
+    }
+    else
+    {
+      const auto [outward, rho] = radial_of(wall, x);
+      g.normal = -outward;
+      gap = wall.radius - rho;
+      wall_velocity += wall.radial_velocity * outward;
+    }
+    g.overlap = r - gap;
+    g.arm_first = 0;
+    g.arm_second = r - 0.5 * g.overlap;
+    g.velocity_difference = v - wall_velocity;
+    g.spin_first = Vec3::Zero();
+    g.spin_second = omega;
+    return t;
+  }
 
   /// Removes or restores wall w; a removed wall forgets its contacts.
   void set_enabled(WallIndex w, bool enabled);
@@ -131,6 +175,31 @@ public:
     const std::int32_t k = slot_[slot(w, p)];
     return k < 0 ? nullptr : &kept_[static_cast<std::size_t>(k)].state;
   }
+  /// The walls' side of the neighbour list (neighbors.h).  mark_near()
+  /// marks, for every ball, the walls whose surface lies within its radius
+  /// plus `reach` of its centre [m], and records where each wall stands;
+  /// it is given the centres the neighbour list measures its skin from.
+  /// While no ball has moved reach/2 from them (the neighbour list's own
+  /// rule) and no wall reach/4 since the marks (near_stale), a ball is
+  /// clear of every wall not marked for it: a ball's clearance changes by
+  /// at most the distance its centre moves plus the distance the wall's
+  /// point moves plus the change of a cylinder's radius, so it has lost at
+  /// most 3/4 of the reach; the quarter left over is far above the
+  /// round-off.  A force pass then asks only the marked walls
+  /// (ball_forces.h).  Walls from the 64th on are asked by every ball.
+  void mark_near(const std::vector<Vec3> &centres, const std::vector<double> &radii, double reach);
+  /// Bit w set: ball p may touch wall w before the next mark_near().
+  std::uint64_t near_walls(Index p) const
+  {
+    return static_cast<std::size_t>(p) < near_.size() ? near_[static_cast<std::size_t>(p)] : ~std::uint64_t(0);
+  }
+  static constexpr WallIndex marked_walls = 64;
+  /// Whether the marks no longer hold: never made, a wall added, a wall
+  /// turned, or moved more than reach/4 (its point, or a cylinder's radius).
+  bool near_stale() const;
+  /// How many times the marks were made.
+  std::size_t near_marks() const { return near_marks_; }
+
   /// Force passes: open_pass() before (a list of new contacts for each of
   /// `threads` threads), keep_new_contact() from the thread that owns ball
   /// p, close_pass() after, which keeps them in (wall, ball) order.
@@ -154,5 +223,9 @@ private:
   std::vector<std::vector<WallContact>> new_; ///< a force pass's new contacts, one list per thread
   std::size_t stride_ = 0;
   ContactState at_rest_;
+  std::vector<std::uint64_t> near_; ///< per ball, the walls it may touch (mark_near)
+  std::vector<Wall> marked_at_;     ///< the walls where mark_near() found them
+  double near_reach_ = 0;           ///< m, the reach of the marks
+  std::size_t near_marks_ = 0;
 };
 } // namespace dem

@@ -228,6 +228,102 @@ TEST_CASE("an adaptive skin narrows at rest, widens in a fall, and changes no ba
   CHECK(same);
 }
 
+TEST_CASE("near-wall marks: a ball within its radius plus the reach of a wall, until a wall moves a quarter reach",
+          "[dem][neighbors][walls]")
+{
+  const double r = 1e-3, reach = 1e-4;
+  dem::WallSet walls;
+  walls.add(floor_wall(1e6));
+  dem::Wall drum;
+  drum.shape = dem::WallShape::cylinder;
+  drum.radius = 10e-3;
+  walls.add(drum);
+  // Ball 0 is 0.9 reach from touching the floor, ball 1 1.1 reach; ball 2
+  // 0.9 reach from the drum, ball 3 1.1 reach (and far above the floor).
+  const std::vector<Vec3> centres = {Vec3(0, 0, r + 0.9 * reach), Vec3(1e-3, 0, r + 1.1 * reach),
+                                     Vec3(10e-3 - r - 0.9 * reach, 0, 5e-3), Vec3(0, 10e-3 - r - 1.1 * reach, 5e-3)};
+  const std::vector<double> radii(4, r);
+  CHECK(walls.near_stale()); // never marked
+  walls.mark_near(centres, radii, reach);
+  CHECK(walls.near_marks() == 1);
+  CHECK(walls.near_walls(0) == 1);
+  CHECK(walls.near_walls(1) == 0);
+  CHECK(walls.near_walls(2) == 2);
+  CHECK(walls.near_walls(3) == 0);
+  CHECK_FALSE(walls.near_stale());
+  // A quarter reach in all: the floor's point and the drum's radius.
+  walls[0].point = Vec3(0.1 * reach, 0, 0.1 * reach);
+  walls[1].radius -= 0.1 * reach;
+  CHECK_FALSE(walls.near_stale());
+  walls[1].radius -= 0.2 * reach;
+  CHECK(walls.near_stale());
+  walls[1].radius = drum.radius;
+  walls[0].point = Vec3::Zero();
+  CHECK_FALSE(walls.near_stale());
+  walls[0].direction = Vec3(0, 1e-12, 1).normalized(); // turned
+  CHECK(walls.near_stale());
+  walls[0].direction = Vec3::UnitZ();
+  walls.add(floor_wall(1e6));
+  CHECK(walls.near_stale()); // a wall added
+}
+
+TEST_CASE("near-wall marks change no ball's motion against moving walls", "[dem][neighbors][walls]")
+{
+  // Balls at rest in a drum that shrinks, a floor, and a lid coming down
+  // fast: with the narrowest skin (balls at rest) the walls outrun the
+  // marks every few steps and are marked anew from the neighbour list's
+  // centres.  A ball that a stale mark left out of a wall's reach would
+  // pass through it, so the run must agree to the last bit with one whose
+  // reach takes in every wall from every ball.
+  const auto run = [](double skin_fraction, bool adaptive)
+  {
+    dem::ParticleStore p;
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j)
+        for (int k = 0; k < 4; ++k)
+        {
+          const double jitter = 0.05e-3 * std::sin(1.7 * i + 2.3 * j + 3.1 * k);
+          p.add(
+            ball(Vec3(2.3e-3 * (i - 2) + jitter, 2.3e-3 * (j - 2) - jitter, 1.1e-3 + 2.3e-3 * k), 1e-3, 1e6, 1e5, 0.5));
+        }
+    dem::WallSet walls;
+    walls.add(floor_wall(1e6, 1e5, 0.5));
+    dem::Wall lid = floor_wall(1e6, 1e5, 0.5);
+    lid.name = "lid";
+    lid.point = Vec3(0, 0, 9.5e-3);
+    lid.direction = -Vec3::UnitZ();
+    lid.velocity = Vec3(0, 0, -0.08);
+    walls.add(lid);
+    dem::Wall drum;
+    drum.name = "drum";
+    drum.shape = dem::WallShape::cylinder;
+    drum.radius = 7.7e-3;
+    drum.radial_velocity = -0.03;
+    drum.props = {1e6, 1e5, 0.5};
+    walls.add(drum);
+    dem::SimulationSettings settings = undamped();
+    settings.local_damping = 0.3;
+    settings.skin_fraction = skin_fraction;
+    settings.adaptive_skin = adaptive;
+    dem::Simulation sim = make_sim(std::move(p), std::move(walls), settings);
+    for (int step = 0; step < 3000; ++step)
+      sim.step();
+    return sim;
+  };
+  const dem::Simulation marked = run(0.25, true);
+  const dem::Simulation every = run(100, false); // every wall within reach of every ball
+  INFO("marks " << marked.walls().near_marks() << ", rebuilds " << marked.neighbors().rebuilds() << ", wall contacts "
+                << marked.walls().contacts().size() << ", time " << marked.time());
+  REQUIRE(marked.walls().near_marks() > marked.neighbors().rebuilds() + 100); // walls outran the marks
+  REQUIRE(marked.walls().contacts().size() > 20);                             // the walls reached the balls
+  bool same = true;
+  for (dem::Index b = 0; b < marked.particles().size(); ++b)
+    same = same && marked.particles().position[b] == every.particles().position[b] &&
+           marked.particles().velocity[b] == every.particles().velocity[b] &&
+           marked.particles().spin[b] == every.particles().spin[b];
+  CHECK(same);
+}
+
 TEST_CASE("a contact that slid hands its friction work to the retired total at the step it parts", "[dem][contacts]")
 {
   // Not when a rebuild drops it: rebuild steps follow the skin (and a
