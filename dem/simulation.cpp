@@ -151,11 +151,12 @@ double lone_contact_bound(const ParticleStore &P)
 double estimated_memory_bytes(double particles, int walls)
 {
   constexpr double pairs_per_ball = 8;
-  const double ball = 5 * sizeof(Vec3) + 12 * sizeof(double) + 1 // ParticleStore
-                      + 2 * sizeof(double) + sizeof(BallEnergy)  // step scratch, energy ledger
-                      + sizeof(Vec3) + 14 * sizeof(Index)        // neighbour reference and cells
-                      + 2 * sizeof(EntryIndex)                   // contact table adjacency
-                      + double(walls) * sizeof(std::int32_t) + sizeof(WallContact);
+  const double ball = 5 * sizeof(Vec3) + 12 * sizeof(double) + 1                   // ParticleStore
+                      + 2 * sizeof(double) + sizeof(BallEnergy)                    // step scratch, energy ledger
+                      + sizeof(Vec3) + 14 * sizeof(Index)                          // neighbour reference and cells
+                      + 2 * sizeof(EntryIndex)                                     // contact table adjacency
+                      + double(walls) * sizeof(std::int32_t) + sizeof(WallContact) // wall histories
+                      + sizeof(std::uint64_t);                                     // near-wall marks
   constexpr double load_record = 9 * sizeof(double); // the force pass's loads of a pair (contact_model.h)
   const double pair = sizeof(Pair) + sizeof(Contact) + sizeof(LawState) + sizeof(EntryIndex) + load_record;
   return 1.5 * particles * (ball + pairs_per_ball * pair);
