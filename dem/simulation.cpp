@@ -339,17 +339,16 @@ Simulation::BallAdvance Simulation::advance_balls()
   // Each thread advances the balls whose resultants it summed in the pass
   // (BallForces::ranges); the arithmetic of a ball does not depend on the
   // thread.  Without a pass over these balls (none yet), equal shares.
+  if (ball_ranges_.items() != static_cast<std::size_t>(n) || ball_ranges_.ranges() == 0)
+    ball_ranges_.prepare(static_cast<std::size_t>(n), omp_get_max_threads());
   const BalancedRanges &ranges = ball_ranges_;
-  const bool summed = ranges.items() == static_cast<std::size_t>(n) && ranges.ranges() > 0;
 #pragma omp parallel reduction(min : first_bad) reduction(|| : moved)
   {
-    const int team = omp_get_num_threads(), count = summed ? ranges.ranges() : team;
-    for (int r = omp_get_thread_num(); r < count; r += team)
+    const int team = omp_get_num_threads();
+    for (int r = omp_get_thread_num(); r < ranges.ranges(); r += team)
     {
-      const auto share = [&](int k)
-      { return static_cast<Index>(summed ? ranges.begin(k) : static_cast<std::size_t>(n) * k / count); };
-      const Index last = share(r + 1);
-      for (Index p = share(r); p < last; ++p)
+      const auto last = static_cast<Index>(ranges.end(r));
+      for (auto p = static_cast<Index>(ranges.begin(r)); p < last; ++p)
       {
         BallEnergy &e = ball_energy_[p];
         const std::size_t b = 3 * static_cast<std::size_t>(p);
