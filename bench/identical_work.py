@@ -34,13 +34,17 @@
       distribution-free interval for it (order statistics; its coverage is
       printed: 94 % with five rounds, 96 % with nine); and checks that every
       run did the same work: contacts and top stress within 0.5 % of the
-      first run's.
+      first run's.  Lines "LOAD round_trip ROUND ns=T" (identical_work.sh
+      writes them from demvv_core_round_trip) add each round's time for a
+      cache line between two cores and back, and its median per load: two
+      threads' speed follows it.
 SI units; stress positive in compression.
 """
 import json
 import math
 import random
 import re
+import statistics
 import sys
 
 KN_BALL, KS_BALL, KN_WALL = 1.2e7, 1.2e6, 1.2e7
@@ -275,8 +279,15 @@ def table(path):
         print("| %s | %s | %s | %s | %s | %.3e | %s | %.5g |" % (load, rnd, engine, asked, used, float(rate),
                                                                  contacts, float(stress)))
     rate = {(r[0], r[1], r[2], r[3]): float(r[4]) for r in runs}
+    trips = {}
+    for line in open(path):
+        m = re.match(r"(\S+) round_trip (\d+) ns=(\S+)", line)
+        if m:
+            trips[(m.group(1), m.group(2))] = float(m.group(3))
     print()
     for load, _, asked, rnd in sorted({(r[0], "", r[2], r[3]) for r in runs}):
+        if asked == "1" and (load, rnd) in trips:
+            print("%s, round %s: core round trip %.0f ns" % (load, rnd, trips[(load, rnd)]))
         d = rate.get((load, "demvv", asked, rnd))
         ranks = peer_ranks(asked)
         peers = {e: rate.get((load, e, ranks, rnd)) for e in PEERS}
@@ -287,6 +298,10 @@ def table(path):
                                                d / faster_peer(rate, load, asked, rnd)))
     print()
     summary(rate)
+    for load in sorted({k[0] for k in trips}, key=["idle", "half", "full"].index):
+        ns = sorted(v for k, v in trips.items() if k[0] == load)
+        print("%s: core round trip %.0f ns in median over %d rounds (%.0f-%.0f ns)" %
+              (load, statistics.median(ns), len(ns), ns[0], ns[-1]))
     c0, s0 = float(runs[0][6]), float(runs[0][7])
     worst = max(max(abs(float(r[6]) / c0 - 1), abs(float(r[7]) / s0 - 1)) for r in runs)
     print("\nsame work: contacts and top stress within %.3f %% of the first run's (limit 0.5 %%): %s" %

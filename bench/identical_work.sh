@@ -22,6 +22,10 @@
 # The table ends with each ratio's median over the rounds of a load and a
 # distribution-free interval for it: nine rounds give it 96 % coverage,
 # three only 75 % (a single round under a load scatters by 10-30 %).
+# Each round starts with the time a cache line takes between two cores and
+# back (demvv_core_round_trip, built beside demvv; skipped when absent): on
+# a virtual machine it changes within the hour (150-500 ns seen on one), and
+# two threads' speed changes with it.
 #
 # usage: bench/identical_work.sh [DEMVV] [STEPS] [ROUNDS] [LOADS]
 #   defaults: build/demvv 5000 3 "idle half full"      (from the repository root)
@@ -54,11 +58,19 @@ stop_load() {
   load_pid=""
 }
 results=$work/results.txt
+# demvv_core_round_trip (bench/core_round_trip.cpp), built beside demvv.
+probe=$(dirname "$demvv")/bench/demvv_core_round_trip
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before $(cut -d' ' -f1-3 /proc/loadavg), $(python3 "$here/identical_work.py" build "$work/prepared")"
 for load in $loads; do
   start_load "$load"
   round=1
   while [ "$round" -le "$rounds" ]; do
+    # The machine's cross-core round trip, which two threads' (and ranks')
+    # speed follows on a virtual machine, measured under this round's load.
+    if [ -x "$probe" ]; then
+      trip=$("$probe" | sed -n 's/^core round trip \([0-9.]*\) ns.*/\1/p')
+      echo "$load round_trip $round ns=$trip" | tee -a "$results"
+    fi
     for n in 1 2 default; do
       if [ "$n" = default ]; then threads=""; else threads="--threads $n"; fi
       # shellcheck disable=SC2086
