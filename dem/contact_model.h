@@ -129,6 +129,16 @@ public:
   // by the step, whose integration advances the same ranges (BallForces).
   // Breaks and energies to retire are collected per range, so that ranges
   // in order are entries in order.
+  //
+  // Two reads of each loop go where the hardware prefetcher cannot follow:
+  // the second ball's motion (the entries run in first-ball order) and the
+  // records of the second list.  Where the second ball or the contact
+  // belongs to the other thread, its cache line comes from the other core:
+  // 400-500 ns there and back on a virtual machine whose two cores sit on
+  // different chiplets (bench/core_round_trip.cpp), 150-200 ns on one.  Both
+  // loops ask for those lines some items ahead; on the identical-work scene
+  // this made two threads about a tenth faster where the cores were far
+  // apart and one thread no slower (BENCHMARKS.md, "Cores far apart").
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
@@ -154,8 +164,13 @@ public:
         events.broken.clear();
         events.released.clear();
         const double start = omp_get_wtime();
-        for (std::size_t c = contact_ranges_.begin(r); c < contact_ranges_.end(r); ++c)
+        const std::size_t last_entry = contact_ranges_.end(r);
+        for (std::size_t c = contact_ranges_.begin(r); c < last_entry; ++c)
+        {
+          if (c + entries_ahead < last_entry)
+            prefetch_motion(p, contacts[c + entries_ahead].second);
           loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, c, dt, events);
+        }
         contact_ranges_.record(r, omp_get_wtime() - start);
       }
 #pragma omp barrier
@@ -183,6 +198,8 @@ public:
           const std::size_t last = table.second_begin(b + 1);
           for (std::size_t k = table.second_begin(b); k < last; ++k)
           {
+            if (k + records_ahead < second_list.size())
+              prefetch_record(loads[second_list[k + records_ahead]]);
             const PairLoad &load = loads[second_list[k]];
             const double arm = p.radius[b] - 0.5 * load.overlap;
             for (int d = 0; d < 3; ++d)
@@ -257,6 +274,25 @@ private:
     std::vector<BrokenBond> broken;
     std::vector<std::size_t> released;
   };
+
+  /// How far ahead the pass asks for the lines of the second ball's motion
+  /// (entries) and of the second list's records: about one cross-core round
+  /// trip of work at 20-30 ns an entry (the scene's pass on one thread).
+  static constexpr std::size_t entries_ahead = 16, records_ahead = 8;
+
+  static DEM_HOT_INLINE void prefetch_motion(const ParticleStore &p, Index ball)
+  {
+    __builtin_prefetch(&p.position[ball]);
+    __builtin_prefetch(&p.velocity[ball]);
+    __builtin_prefetch(&p.spin[ball]);
+  }
+
+  /// Both lines a 72-byte record may span.
+  static DEM_HOT_INLINE void prefetch_record(const PairLoad &load)
+  {
+    __builtin_prefetch(&load);
+    __builtin_prefetch(reinterpret_cast<const char *>(&load) + 64);
+  }
 
   /// Resolves contact c (entry k, pair constants `pair`) at this step and
   /// returns its loads.

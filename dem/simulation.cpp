@@ -339,6 +339,11 @@ Simulation::BallAdvance Simulation::advance_balls()
   // Each thread advances the balls whose resultants it summed in the pass
   // (BallForces::ranges); the arithmetic of a ball does not depend on the
   // thread.  Without a pass over these balls (none yet), equal shares.
+  // The lines of a ball near the other thread's balls were read by the other
+  // core in the pass; writing them waits for that core to let them go, so
+  // the loop asks for them, to write, some balls ahead (the force pass's
+  // prefetches, contact_model.h, say why and what it gained).
+  constexpr Index balls_ahead = 16;
   if (ball_ranges_.items() != static_cast<std::size_t>(n) || ball_ranges_.ranges() == 0)
     ball_ranges_.prepare(static_cast<std::size_t>(n), omp_get_max_threads());
   const BalancedRanges &ranges = ball_ranges_;
@@ -352,6 +357,9 @@ Simulation::BallAdvance Simulation::advance_balls()
       {
         BallEnergy &e = ball_energy_[p];
         const std::size_t b = 3 * static_cast<std::size_t>(p);
+        if (p + balls_ahead < last)
+          for (double *motion : {x, v, w})
+            __builtin_prefetch(motion + b + 3 * balls_ahead, 1);
         // A held ball has zero inverse mass (inertia), so the kick leaves it
         // alone; the flags below only route its energy to the boundary work its
         // constraint does.
