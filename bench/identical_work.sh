@@ -24,7 +24,7 @@
 # three only 75 % (a single round under a load scatters by 10-30 %).
 # Each round starts with the time a cache line takes between two cores and
 # back (demvv_core_round_trip, built beside demvv; skipped when absent): on
-# a virtual machine it changes within the hour (150-500 ns seen on one), and
+# a virtual machine it changes within the hour (150-550 ns seen on one), and
 # two threads' speed changes with it.
 #
 # usage: bench/identical_work.sh [DEMVV] [STEPS] [ROUNDS] [LOADS]

@@ -130,15 +130,15 @@ public:
   // Breaks and energies to retire are collected per range, so that ranges
   // in order are entries in order.
   //
-  // Two reads of each loop go where the hardware prefetcher cannot follow:
-  // the second ball's motion (the entries run in first-ball order) and the
-  // records of the second list.  Where the second ball or the contact
-  // belongs to the other thread, its cache line comes from the other core:
-  // 400-500 ns there and back on a virtual machine whose two cores sit on
-  // different chiplets (bench/core_round_trip.cpp), 150-200 ns on one.  Both
-  // loops ask for those lines some items ahead; on the identical-work scene
-  // this made two threads about a tenth faster where the cores were far
-  // apart and one thread no slower (BENCHMARKS.md, "Cores far apart").
+  // Each loop reads at one scattered index that the hardware prefetcher
+  // cannot follow: the second ball's motion (the entries run in first-ball
+  // order) and the records of the second list.  Where the second ball or
+  // the contact belongs to the other thread, the line comes from the other
+  // core: 400-550 ns there and back on a virtual machine whose two cores sit
+  // on different chiplets (bench/core_round_trip.cpp), 150-200 ns on one.
+  // Both loops ask for those lines some items ahead; on the identical-work
+  // scene this made two threads about a tenth faster where the cores were
+  // far apart and one thread no slower (BENCHMARKS.md, "Cores far apart").
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
@@ -280,6 +280,7 @@ private:
   /// trip of work at 20-30 ns an entry (the scene's pass on one thread).
   static constexpr std::size_t entries_ahead = 16, records_ahead = 8;
 
+  /// The lines of a ball's position, velocity and spin.
   static DEM_HOT_INLINE void prefetch_motion(const ParticleStore &p, Index ball)
   {
     __builtin_prefetch(&p.position[ball]);
