@@ -266,11 +266,14 @@ def summary(rate):
 
 
 def table(path):
-    runs = []
+    runs, trips = [], {}
     for line in open(path):
         m = re.match(r"(\S+) (\S+) (\S+) (\d+) rate=(\S+) threads=(\S+) contacts=(\d+) stress_pa=(\S+)", line)
         if m:
             runs.append(m.groups())
+        m = re.match(r"(\S+) round_trip (\d+) ns=(\S+)", line)
+        if m:
+            trips[(m.group(1), m.group(2))] = float(m.group(3))
     if not runs:
         sys.exit("no results in " + path)
     print("| load | round | engine | threads asked | threads used | particle-steps/s | contacts | top stress [Pa] |")
@@ -279,11 +282,6 @@ def table(path):
         print("| %s | %s | %s | %s | %s | %.3e | %s | %.5g |" % (load, rnd, engine, asked, used, float(rate),
                                                                  contacts, float(stress)))
     rate = {(r[0], r[1], r[2], r[3]): float(r[4]) for r in runs}
-    trips = {}
-    for line in open(path):
-        m = re.match(r"(\S+) round_trip (\d+) ns=(\S+)", line)
-        if m:
-            trips[(m.group(1), m.group(2))] = float(m.group(3))
     print()
     for load, _, asked, rnd in sorted({(r[0], "", r[2], r[3]) for r in runs}):
         if asked == "1" and (load, rnd) in trips:
