@@ -76,10 +76,19 @@ struct BallForces
       const WallProps &wp = walls[w].props;
       const ContactParams params{in_series(P.kn[p], wp.kn), in_series(P.ks[p], wp.ks),
                                  std::min(P.friction[p], wp.friction)};
-      bool unbonded = false;
-      const ContactBond no_bond;
-      LinearLaw::History none;
-      const ResolvedContact r = resolve_contact(LinearLaw{}, params, unbonded, no_bond, state, none, g, dt);
+      // A wall without shear stiffness (the default platen: frictionless)
+      // never gives a contact shear force; the resolver's turn of the
+      // shear, its increment and the Coulomb limit would all give zero.
+      ResolvedContact r;
+      if (params.ks == 0 && state.shear_force.isZero(0))
+        r = resolve_shear_free_contact(params, state, g);
+      else
+      {
+        bool unbonded = false;
+        const ContactBond no_bond;
+        LinearLaw::History none;
+        r = resolve_contact(LinearLaw{}, params, unbonded, no_bond, state, none, g, dt);
+      }
       if (!r.touching)
         continue;
       if (!kept)

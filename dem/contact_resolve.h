@@ -30,6 +30,8 @@
 
 #include "dem/contact.h"
 
+#include <algorithm>
+
 namespace dem
 {
 struct ResolvedContact
@@ -153,6 +155,33 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   state.shear_force = shear;
   out.force = fn * g.normal + shear;
   out.shear = shear;
+  return out;
+}
+/// resolve_contact for an unbonded contact whose pair has no shear
+/// stiffness (K^s = 0) and which carries no shear force: the shear force
+/// stays zero (every increment is K^s V_s dt = 0, and a turned zero is
+/// zero), no friction work is done, and only the normal force of the linear
+/// law remains, F = max(K^n U, 0) n (eq. 3.2), while U > 0.  The same
+/// state and force as resolve_contact with the linear law, to the bit but
+/// for the sign of a zero (a test compares them).  Used for ball-wall
+/// contacts, where K^s = 0 is the default (frictionless platens).
+DEM_HOT_INLINE ResolvedContact resolve_shear_free_contact(const ContactParams &params, ContactState &state,
+                                                          const ContactGeometry &g)
+{
+  ResolvedContact out;
+  state.shear_force.setZero();
+  state.overlap = g.overlap;
+  if (g.overlap <= 0)
+  {
+    state.normal.setZero();
+    state.normal_force = 0;
+    return out;
+  }
+  const double fn = std::max(params.kn * g.overlap, 0.0);
+  out.touching = true;
+  state.normal = g.normal;
+  state.normal_force = fn;
+  out.force = fn * g.normal;
   return out;
 }
 } // namespace dem

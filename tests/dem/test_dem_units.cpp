@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <numeric>
 #include <optional>
+#include <random>
 #include <tuple>
 #include <vector>
 
@@ -111,6 +112,66 @@ TEST_CASE("the Coulomb limit decides slip as |F_s| > mu F_n does, to the last bi
   // Both sides of the edge were tried.
   CHECK(inside > 500);
   CHECK(outside > 500);
+}
+
+TEST_CASE("a contact without shear stiffness resolves as the general resolver does, to its closed form", "[dem][law]")
+{
+  // The walls' shortcut (frictionless platens) must give the force and the
+  // state the general resolver gives the same contact: random geometries,
+  // fresh and touching states, apart and overlapping, compared with ==
+  // (equal values; a zero's sign may differ).  Its force is also the
+  // closed form max(K^n U, 0) n, exactly.
+  std::mt19937_64 random(20261205);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
+  const auto direction = [&]
+  {
+    Vec3 v(unit(random), unit(random), unit(random));
+    return Vec3(v / v.norm());
+  };
+  int touching = 0;
+  for (int trial = 0; trial < 4000; ++trial)
+  {
+    const dem::ContactParams params{std::pow(10.0, 5 + 3 * share(random)), 0.0, share(random)};
+    dem::ContactGeometry g;
+    g.normal = direction();
+    g.overlap = 1e-4 * (share(random) - 0.2);
+    g.velocity_difference = 0.1 * direction();
+    g.spin_first = 10 * direction();
+    g.spin_second = 10 * direction();
+    g.arm_first = 1e-3 * (1 + share(random));
+    g.arm_second = 1e-3 * (1 + share(random));
+    dem::ContactState before;
+    if (trial % 2 == 1)
+    {
+      before.normal = direction();
+      before.normal_force = share(random);
+      before.overlap = 1e-5 * share(random);
+    }
+    before.friction_work = trial % 3 == 0 ? share(random) : 0.0;
+    dem::ContactState general = before, shortcut = before;
+    bool bonded = false;
+    dem::LinearLaw::History none;
+    const dem::ResolvedContact a =
+      dem::resolve_contact(dem::LinearLaw{}, params, bonded, dem::ContactBond{}, general, none, g, 1e-6);
+    const dem::ResolvedContact b = dem::resolve_shear_free_contact(params, shortcut, g);
+    INFO("trial " << trial << ", overlap " << g.overlap);
+    REQUIRE(b.touching == a.touching);
+    REQUIRE(b.broke == a.broke);
+    REQUIRE(a.shear == Vec3::Zero());
+    REQUIRE(b.shear == Vec3::Zero());
+    REQUIRE(b.force == a.force);
+    REQUIRE(b.force == std::max(params.kn * g.overlap, 0.0) * (b.touching ? g.normal : Vec3(Vec3::Zero())));
+    REQUIRE(shortcut.shear_force == general.shear_force);
+    REQUIRE(shortcut.normal == general.normal);
+    REQUIRE(shortcut.normal_force == general.normal_force);
+    REQUIRE(shortcut.overlap == general.overlap);
+    REQUIRE(shortcut.friction_work == general.friction_work);
+    REQUIRE(shortcut.bond_energy == general.bond_energy);
+    touching += b.touching ? 1 : 0;
+  }
+  // Both branches were taken often.
+  CHECK(touching > 2000);
+  CHECK(touching < 3800);
 }
 
 TEST_CASE("a ball is clear of a cylinder exactly when its clearance is at least its radius", "[dem][walls]")
