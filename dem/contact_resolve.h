@@ -157,6 +157,7 @@ DEM_HOT_INLINE ResolvedContact resolve_contact(const Law &law, const ContactPara
   out.shear = shear;
   return out;
 }
+
 /// resolve_contact for an unbonded contact whose pair has no shear
 /// stiffness (K^s = 0) and which carries no shear force: the shear force
 /// stays zero (every increment is K^s V_s dt = 0, and a turned zero is
@@ -171,7 +172,7 @@ DEM_HOT_INLINE ResolvedContact resolve_shear_free_contact(const ContactParams &p
   ResolvedContact out;
   state.shear_force.setZero();
   state.overlap = g.overlap;
-  if (g.overlap <= 0)
+  if (!(g.overlap > 0)) // apart (and, as resolve_contact has it, not touching at a NaN overlap)
   {
     state.normal.setZero();
     state.normal_force = 0;
