@@ -3,7 +3,7 @@
 # one thread each, the first build pinned to core 0 and the second to core 1
 # in odd rounds, the other way round in even ones.  A run on one core does
 # not slow a run on the other on the 2-core machine of BENCHMARKS.md (two
-# runs at once each ran 0.97-1.02 times a lone run), so both builds see the
+# runs at once each ran 0.96-1.05 times a lone run), so both builds see the
 # same moment of a machine whose speed drifts; the geometric mean of an odd
 # and the next even round cancels the two cores' own difference.
 #
@@ -37,7 +37,6 @@ done
 command -v taskset > /dev/null || { echo "side_by_side.sh: needs taskset (Debian: util-linux)" >&2; exit 77; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-rate() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['particle_steps_per_second'])" "$1/summary.json"; }
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), load $(cut -d' ' -f1-3 /proc/loadavg), deck $deck"
 echo "# before $before, after $after"
 round=1
@@ -63,15 +62,16 @@ import json, sys
 before, after = (json.load(open(d + "/summary.json"))["particle_steps_per_second"] for d in sys.argv[1:3])
 print(f"round {sys.argv[3]}: before {before:.4g} (core {sys.argv[4]}), after {after:.4g} (core {sys.argv[5]}),"
       f" after / before {after / before:.3f}, series identical: {sys.argv[6]}")
-' "$work/before" "$work/after" "$round" "$core_before" "$core_after" "$same" | tee -a "$work/rounds"
+print(repr(after / before), file=open(sys.argv[7], "a"))
+' "$work/before" "$work/after" "$round" "$core_before" "$core_after" "$same" "$work/ratios"
   round=$((round + 1))
 done
 python3 -c '
 import math, statistics, sys
-ratios = [float(line.split("after / before ")[1].split(",")[0]) for line in open(sys.argv[1])]
+ratios = [float(line) for line in open(sys.argv[1])]
 pairs = [math.sqrt(ratios[i] * ratios[i + 1]) for i in range(0, len(ratios) - 1, 2)]
 if pairs:
     print("pairs (geometric means of rounds 1-2, 3-4, ...): " + ", ".join(f"{p:.3f}" for p in pairs))
     print(f"after / before, median of {len(pairs)} pairs: {statistics.median(pairs):.3f}"
           f" (range {min(pairs):.3f}-{max(pairs):.3f})")
-' "$work/rounds"
+' "$work/ratios"
