@@ -578,6 +578,7 @@ void ThreadGovernor::begin_window()
 {
   steps_ = 0;
   window_start_ = now_();
+  looks_ = blind_looks_ = free_looks_ = crowded_looks_ = 0;
 }
 
 void ThreadGovernor::use(int threads) { omp_set_num_threads(threads); }
@@ -592,6 +593,11 @@ void ThreadGovernor::after_step()
   if (!ours_ || most_ == 1) // no trials where only one count is allowed
     return;
   ++steps_;
+  if (const double now = now_(); now >= next_probe_)
+  {
+    next_probe_ = now + probe_spacing;
+    look_at_machine();
+  }
   // A trial whose time already exceeds what its whole window may take to
   // win cannot win any more: its time per step over the window will be at
   // least the time spent so far over the window's steps, above 90 % of the
@@ -652,10 +658,26 @@ void ThreadGovernor::after_step()
   }
 }
 
-bool ThreadGovernor::worth_trying(double end)
+void ThreadGovernor::look_at_machine()
 {
   const std::optional<int> spare = spare_cores_();
-  trial_had_reason_ = !spare || (trial_ < current_ ? *spare < 0 : *spare > 0);
+  ++looks_;
+  if (!spare)
+    ++blind_looks_;
+  else if (*spare > 0)
+    ++free_looks_;
+  else if (*spare < 0)
+    ++crowded_looks_;
+}
+
+bool ThreadGovernor::worth_trying(double end)
+{
+  // A free core (one more thread) or a competitor (one fewer) in at least
+  // a quarter of the window's looks; a window too short for one looks now.
+  if (looks_ == 0)
+    look_at_machine();
+  const long seen = trial_ < current_ ? crowded_looks_ : free_looks_;
+  trial_had_reason_ = blind_looks_ > 0 || 4 * seen >= looks_;
   return trial_had_reason_ || end - last_trial_ >= longest_spacing;
 }
 

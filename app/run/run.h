@@ -322,7 +322,13 @@ int thread_ceiling(const RunOptions &options);
 /// 2 s on one.
 /// A trial is taken when the machine shows a reason for it: one thread
 /// fewer when more tasks are runnable than there are cores (another
-/// process competes for ours), one more when fewer are (a core is free).
+/// process competes for ours), one more when fewer are (a core is free),
+/// in at least a quarter of the looks at the machine over the window just
+/// ended (one every 10 ms, about 8 us each).  One look at the window's end
+/// would see a load that holds a core 50 ms of every 100 at the same
+/// phase each time, since windows of 0.2 s span whole periods of it: a run
+/// started on one thread in the load's busy half never saw the free core
+/// of its idle half.  A process that only passes by shows in few looks.
 /// Without a reason it is looked at again 0.25 s later, and taken anyway
 /// once 32 s have passed since the last, for a competitor the count of
 /// runnable tasks does not show (another machine's load on the host's
@@ -374,8 +380,10 @@ private:
   /// Whether a trial of trial_ threads is taken at time `end` [s]; sets
   /// trial_had_reason_.
   bool worth_trying(double end);
+  /// Probes the machine once (spare_cores_) and counts what it showed.
+  void look_at_machine();
   static constexpr double window_seconds = 0.2, gain = 0.1, longest_spacing = 32; // s, 1, s
-  static constexpr double recheck = 0.25;                                         // s
+  static constexpr double recheck = 0.25, probe_spacing = 0.01;                   // s, s
   Phase phase_ = Phase::settled;
   double trial_per_step_ = 0; ///< s, at trial_
   double trial_deadline_ = 0; ///< s, the longest a trial's window may take and still win
@@ -392,5 +400,7 @@ private:
   double next_trial_ = 0;        ///< s, when the next trial begins
   double last_trial_ = 0;        ///< s, when the last trial ended (the start before the first)
   double trial_spacing_ = 2;     ///< s
+  double next_probe_ = 0;        ///< s, when the machine is looked at next
+  long looks_ = 0, blind_looks_ = 0, free_looks_ = 0, crowded_looks_ = 0; ///< since the window began
 };
 } // namespace demvv
