@@ -469,13 +469,14 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
   struct Machine
   {
     double clock = 0, busy_at = 1e9, fewer_seconds = 0;
-    double load_period = 0, load_phase = 0;  // s: a load busy the first half of every period (none at 0)
+    double load_period = 0, load_phase = 0;  // s: a load busy at the start of every period (none at 0)
+    double load_share = 0.5;                 // the share of each period the load is busy
     double one_busy = 1e-3, two_busy = 3e-3; // s, a step on one and on two threads while the load runs
     int cores = 2;
     bool busy() const
     {
       if (load_period > 0)
-        return std::fmod(clock + load_phase, load_period) < 0.5 * load_period;
+        return std::fmod(clock + load_phase, load_period) < load_share * load_period;
       return clock >= busy_at;
     }
     const demvv::ThreadGovernor *governor = nullptr;
@@ -573,6 +574,25 @@ TEST_CASE("the thread governor gives up a thread a busy machine holds back and k
       const auto g = governed(m, 1, 2);
       run(m, *g, 4);
       INFO("the load's phase " << m.load_phase << " s, trials " << g->trials());
+      CHECK(g->threads() == 2);
+    }
+  }
+  SECTION("a process that only passes by (5 ms of every 100) starts no trial on two threads, whatever its phase")
+  {
+    // One look at each window's end would land in the passing process's
+    // 5 ms at one phase in twenty, and there at every window; the looks
+    // see it in one of twenty, under the quarter a reason needs.
+    for (int phase = 0; phase < 20; ++phase)
+    {
+      Machine m;
+      m.load_period = 0.1;
+      m.load_share = 0.05;
+      m.load_phase = 0.005 * phase;
+      m.two_busy = 0.5e-3;
+      const auto g = governed(m, 2, 2);
+      run(m, *g, 10);
+      INFO("the passing process's phase " << m.load_phase << " s");
+      CHECK(g->trials() == 0);
       CHECK(g->threads() == 2);
     }
   }
