@@ -593,7 +593,8 @@ void ThreadGovernor::after_step()
   if (!ours_ || most_ == 1) // no trials where only one count is allowed
     return;
   ++steps_;
-  if (const double now = now_(); now >= next_probe_)
+  const double now = now_(); // one clock read a step, for the looks, the trial's deadline and the window's end
+  if (now >= next_probe_)
   {
     next_probe_ = now + probe_spacing;
     look_at_machine();
@@ -605,17 +606,16 @@ void ThreadGovernor::after_step()
   // ends here, so that a count which runs many times slower (two threads
   // beside a load that holds one core) costs at most that much, not its
   // whole window of steps.
-  if (phase_ == Phase::trial && steps_ < window_steps_)
-    if (const double now = now_(); now - window_start_ > trial_deadline_)
-    {
-      use(current_);
-      window_steps_ = steps_in_window(settled_per_step_);
-      settle(now, false);
-      return;
-    }
+  if (phase_ == Phase::trial && steps_ < window_steps_ && now - window_start_ > trial_deadline_)
+  {
+    use(current_);
+    window_steps_ = steps_in_window(settled_per_step_);
+    settle(now, false);
+    return;
+  }
   if (steps_ < window_steps_)
     return;
-  const double end = now_();
+  const double end = now;
   const double per_step = std::max((end - window_start_) / double(steps_), 1e-9);
   window_steps_ = steps_in_window(per_step);
   switch (phase_)
