@@ -324,7 +324,7 @@ int thread_ceiling(const RunOptions &options);
 /// fewer when more tasks are runnable than there are cores (another
 /// process competes for ours), one more when fewer are (a core is free),
 /// in at least a quarter of the looks at the machine over the window just
-/// ended (one every 10 ms, about 8 us each).  One look at the window's end
+/// ended (one every 10 ms; its cost is in BENCHMARKS.md).  One look at the window's end
 /// would see a load that holds a core 50 ms of every 100 at the same
 /// phase each time, since windows of 0.2 s span whole periods of it: a run
 /// started on one thread in the load's busy half never saw the free core
