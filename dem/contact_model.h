@@ -20,6 +20,7 @@
 
 #include "dem/balanced_ranges.h"
 #include "dem/ball_forces.h"
+#include "dem/contact_lanes.h"
 #include "dem/contact_resolve.h"
 #include "dem/contacts.h"
 #include "dem/law_burgers.h"
@@ -31,6 +32,7 @@
 #include <algorithm>
 #include <memory>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace dem
@@ -139,6 +141,10 @@ public:
   // Both loops ask for those lines some items ahead; on the identical-work
   // scene this made two threads about a tenth faster where the cores were
   // far apart and one thread no slower (BENCHMARKS.md, "Cores far apart").
+  //
+  // The linear law resolves its entries eight at a time where the CPU has
+  // the instructions (contact_lanes.h); which entries the blocks resolve
+  // depends on each entry alone, so the ranges may cut anywhere.
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
@@ -164,13 +170,16 @@ public:
         events.broken.clear();
         events.released.clear();
         const double start = omp_get_wtime();
-        const std::size_t last_entry = contact_ranges_.end(r);
-        for (std::size_t c = contact_ranges_.begin(r); c < last_entry; ++c)
-        {
-          if (c + entries_ahead < last_entry)
-            prefetch_motion(p, contacts[c + entries_ahead].second);
-          loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, c, dt, events);
-        }
+        const std::size_t first_entry = contact_ranges_.begin(r), last_entry = contact_ranges_.end(r);
+        if constexpr (in_lanes)
+          resolve_in_lanes(p, contacts, constants, first_entry, last_entry, dt, loads, events);
+        else
+          for (std::size_t c = first_entry; c < last_entry; ++c)
+          {
+            if (c + entries_ahead < last_entry)
+              prefetch_motion(p, contacts[c + entries_ahead].second);
+            loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], states, c, dt, events);
+          }
         contact_ranges_.record(r, omp_get_wtime() - start);
       }
 #pragma omp barrier
@@ -295,6 +304,43 @@ private:
     __builtin_prefetch(reinterpret_cast<const char *>(&load) + 64);
   }
 
+  /// Resolves entries [begin, end) block by block: each block's ordinary
+  /// lanes at once (contact_lanes.h), its other entries one by one, in
+  /// entry order.
+  DEM_HOT_INLINE void resolve_in_lanes(const ParticleStore &p, Contact *contacts, const ContactParams *constants,
+                                       std::size_t begin, std::size_t end, double dt, PairLoad *loads,
+                                       PassEvents &events)
+  {
+#if defined(__AVX512F__)
+    LaneResults lane;
+    for (std::size_t block = begin; block < end; block += 8)
+    {
+      if (block + entries_ahead + 8 <= end)
+        for (std::size_t c = block + entries_ahead; c < block + entries_ahead + 8; ++c)
+          prefetch_motion(p, contacts[c].second);
+      const int count = static_cast<int>(std::min<std::size_t>(8, end - block));
+      const __mmask8 resolved = linear_block(p, constants, contacts, block, count, dt, lane);
+      for (int l = 0; l < count; ++l)
+      {
+        const std::size_t c = block + static_cast<std::size_t>(l);
+        if ((resolved >> l) & 1)
+        {
+          lane.commit(l, contacts[c].state);
+          loads[c] = {{lane.force_x[l], lane.force_y[l], lane.force_z[l]},
+                      {lane.lever_x[l], lane.lever_y[l], lane.lever_z[l]},
+                      lane.overlap[l],
+                      lane.bound_first[l],
+                      lane.bound_second[l]};
+        }
+        else
+          loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], nullptr, c, dt, events);
+      }
+    }
+#else
+    (void)p, (void)contacts, (void)constants, (void)begin, (void)end, (void)dt, (void)loads, (void)events;
+#endif
+  }
+
   /// Resolves contact c (entry k, pair constants `pair`) at this step and
   /// returns its loads.
   DEM_HOT_INLINE PairLoad resolve_pair(const ParticleStore &p, Contact &k, const ContactParams &pair, LawState *states,
@@ -346,6 +392,8 @@ private:
   }
 
   static constexpr bool stateful = !Law::state_fields.empty();
+  /// Whether this law's entries are resolved in blocks of eight.
+  static constexpr bool in_lanes = contact_lanes && std::is_same_v<Law, LinearLaw>;
 
   /// The law history of entry c (a law without one has no slots to read).
   static typename Law::History history_of(const std::vector<LawState> &states, std::size_t c)

@@ -3,6 +3,8 @@
 #include "tests/dem/two_body.h"
 
 #include "dem/bonds.h"
+#include "dem/contact_lanes.h"
+#include "dem/contact_model.h"
 #include "dem/contact_resolve.h"
 #include "dem/law_linear.h"
 #include "dem/measure.h"
@@ -20,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -172,6 +175,157 @@ TEST_CASE("a contact without shear stiffness resolves as the general resolver do
   // Both branches were taken often.
   CHECK(touching > 2000);
   CHECK(touching < 3800);
+}
+
+TEST_CASE("eight contacts at once resolve as the general resolver resolves each", "[dem][law][lanes]")
+{
+  // The linear law's blocks of eight (contact_lanes.h) must resolve exactly
+  // the ordinary lanes (unbonded, touching at the last pass and still, and
+  // sticking) and leave every other lane to the general resolver; where
+  // they resolve, their state and loads must be resolve_contact's.  Both do
+  // the same operations in the same order, so only the compiler's fusing
+  // of multiplies and adds can differ: a few roundings, each at most an
+  // ulp (2.2e-16) of a term no larger than the contact's force scale
+  // |F_n| + |F_s|, which 1e-12 of that scale bounds with room to spare; a
+  // wrong term or sign is off by far more (the shear increment alone is
+  // 1e-4 to 1e-1 of the scale here).  The overlap R_i + R_j - |d| inherits
+  // the distance's roundings, each at most an ulp of R_i + R_j: eight such
+  // ulps bound it.  The lanes that are not ordinary are
+  // kept far from every threshold: slip at ten times the friction limit,
+  // separation at -0.2 to -1 of an overlap.  A lane's result must not depend
+  // on the lanes beside it (a block may be short, at the end of a range):
+  // each resolved lane is resolved again alone and must come out the same
+  // to the bit.
+  if (!dem::contact_lanes)
+  {
+    WARN("this build resolves every contact one by one (no AVX-512): nothing to compare");
+    return;
+  }
+#if defined(__AVX512F__)
+  std::mt19937_64 random(20261205);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
+  const auto direction = [&]
+  {
+    Vec3 v(unit(random), unit(random), unit(random));
+    return Vec3(v / v.norm());
+  };
+  const std::vector<dem::ContactParams> constants{{6e6, 6e5, 0.5}, {2e7, 1e7, 0.3}, {1e5, 3e4, 0.9}};
+  enum Kind
+  {
+    ordinary,
+    slipping,
+    fresh,
+    apart,
+    bonded
+  };
+  const double dt = 5e-7;
+  int resolved_lanes = 0, other_lanes = 0;
+  for (int block = 0; block < 400; ++block)
+  {
+    dem::ParticleStore p;
+    std::vector<dem::Contact> entries(8);
+    std::vector<Kind> kinds(8);
+    const bool one_set = block % 2 == 0;
+    for (int l = 0; l < 8; ++l)
+    {
+      // One kind per lane: mostly ordinary, so that whole blocks occur too.
+      const double pick = share(random);
+      const Kind kind = block % 5 == 0 ? ordinary
+                        : pick < 0.6   ? ordinary
+                        : pick < 0.7   ? slipping
+                        : pick < 0.8   ? fresh
+                        : pick < 0.9   ? apart
+                                       : bonded;
+      kinds[static_cast<std::size_t>(l)] = kind;
+      dem::BallSpec a, b;
+      a.radius = 1e-3 * (0.8 + 0.4 * share(random));
+      b.radius = 1e-3 * (0.8 + 0.4 * share(random));
+      const Vec3 n = direction();
+      const double overlap = (kind == apart ? -(0.2 + 0.8 * share(random)) : 0.1 + share(random)) * 1e-5;
+      a.position = Vec3(unit(random), unit(random), unit(random)) * 0.01;
+      b.position = a.position + (a.radius + b.radius - overlap) * n;
+      a.velocity = 0.01 * direction();
+      b.velocity = 0.01 * direction();
+      a.spin = 5.0 * direction();
+      b.spin = 5.0 * direction();
+      dem::Contact &e = entries[static_cast<std::size_t>(l)];
+      e.first = p.add(a);
+      e.second = p.add(b);
+      e.constants = one_set ? 0u : static_cast<dem::ConstantsIndex>(random() % constants.size());
+      const dem::ContactParams &k = constants[e.constants];
+      if (kind != fresh)
+      {
+        // Touching at the last pass: its normal a small turn from today's.
+        e.state.normal = Vec3(n + 1e-3 * direction()).normalized();
+        e.state.normal_force = k.kn * overlap;
+        e.state.overlap = overlap;
+      }
+      const double limit = k.friction * k.kn * std::max(overlap, 1e-6);
+      const Vec3 tangent = direction().cross(n).normalized();
+      e.state.shear_force = (kind == slipping ? 10.0 : 0.1 * share(random)) * limit * tangent;
+      e.state.friction_work = share(random) * 1e-9;
+      e.bonded = kind == bonded;
+      if (e.bonded)
+        e.bond = dem::ContactBond{1e3, 1e3};
+      e.stability = {share(random), share(random)};
+    }
+    dem::LaneResults lanes;
+    const std::vector<dem::Contact> before = entries;
+    const int count = block % 3 == 1 ? 1 + block % 8 : 8;
+    const __mmask8 resolved = dem::linear_block(p, constants.data(), entries.data(), 0, count, dt, lanes);
+    for (int l = 0; l < 8; ++l)
+    {
+      const std::size_t c = static_cast<std::size_t>(l);
+      INFO("block " << block << ", lane " << l << ", kind " << kinds[c]);
+      // The block writes no entry.
+      REQUIRE(entries[c].state.shear_force == before[c].state.shear_force);
+      REQUIRE(entries[c].state.normal == before[c].state.normal);
+      const bool taken = (resolved >> l) & 1;
+      REQUIRE(taken == (l < count && kinds[c] == ordinary));
+      if (!taken)
+      {
+        ++other_lanes;
+        continue;
+      }
+      ++resolved_lanes;
+      dem::LaneResults alone;
+      REQUIRE(dem::linear_block(p, constants.data(), entries.data(), c, 1, dt, alone) == 1);
+      CHECK(alone.force_x[0] == lanes.force_x[l]);
+      CHECK(alone.force_y[0] == lanes.force_y[l]);
+      CHECK(alone.force_z[0] == lanes.force_z[l]);
+      CHECK(alone.shear_x[0] == lanes.shear_x[l]);
+      CHECK(alone.normal_z[0] == lanes.normal_z[l]);
+      CHECK(alone.lever_y[0] == lanes.lever_y[l]);
+      dem::Contact general = before[c];
+      dem::LinearLaw::History none;
+      const dem::ContactGeometry g = dem::sphere_sphere(p, general.first, general.second);
+      const dem::ResolvedContact r = dem::resolve_contact(dem::LinearLaw{}, constants[general.constants],
+                                                          general.bonded, general.bond, general.state, none, g, dt);
+      REQUIRE(r.touching);
+      dem::ContactState lane_state = before[c].state;
+      lanes.commit(l, lane_state);
+      const double scale = std::abs(general.state.normal_force) + general.state.shear_force.norm();
+      const double tolerance = 1e-12 * scale;
+      CHECK((lane_state.shear_force - general.state.shear_force).norm() <= tolerance);
+      CHECK(std::abs(lane_state.normal_force - general.state.normal_force) <= tolerance);
+      CHECK((lane_state.normal - general.state.normal).norm() <= 1e-15);
+      const double overlap_tolerance =
+        8 * std::numeric_limits<double>::epsilon() * (p.radius[general.first] + p.radius[general.second]);
+      CHECK(std::abs(lane_state.overlap - general.state.overlap) <= overlap_tolerance);
+      CHECK(lane_state.friction_work == general.state.friction_work);
+      const Vec3 force(lanes.force_x[l], lanes.force_y[l], lanes.force_z[l]);
+      const Vec3 lever(lanes.lever_x[l], lanes.lever_y[l], lanes.lever_z[l]);
+      CHECK((force - r.force).norm() <= tolerance);
+      CHECK((lever - dem::cross(g.normal, r.shear)).norm() <= tolerance);
+      CHECK(lanes.overlap[l] == lane_state.overlap);
+      CHECK(lanes.bound_first[l] == before[c].stability.first);
+      CHECK(lanes.bound_second[l] == before[c].stability.second);
+    }
+  }
+  // Both paths were taken often.
+  CHECK(resolved_lanes > 1000);
+  CHECK(other_lanes > 400);
+#endif
 }
 
 TEST_CASE("a ball is clear of a cylinder exactly when its clearance is at least its radius", "[dem][walls]")
