@@ -106,7 +106,6 @@ inline Vectors cross(const Vectors &a, const Vectors &b)
 {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline __mmask8 nonzero(Reals a) { return _mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_NEQ_UQ); }
 inline __mmask8 positive(Reals a) { return _mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_GT_OQ); }
 } // namespace lanes
 
@@ -121,10 +120,20 @@ inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params
   using namespace lanes;
   static_assert(sizeof(Contact) % sizeof(double) == 0, "entries are read as doubles with their stride");
   constexpr long long stride = sizeof(Contact) / sizeof(double);
-  // Lanes past `count` read entry c again and are never resolved.
+  // Lanes past `count` read entry c again and are never resolved.  A lane
+  // may be ordinary if its entry is unbonded and touched at the last pass;
+  // a block without one (most of a bonded sample's) stops here, having read
+  // only what the general resolver reads next.
+  unsigned candidates = 0;
+  for (int l = 0; l < count; ++l)
+  {
+    const Contact &e = entries[c + static_cast<std::size_t>(l)];
+    candidates |= unsigned(!e.bonded && e.state.touching()) << l;
+  }
+  if (!candidates)
+    return 0;
   alignas(32) std::int32_t first[8], second[8], constants[8];
   alignas(64) long long at_entry[8];
-  unsigned unbonded = 0;
   for (int l = 0; l < 8; ++l)
   {
     const int lane = l < count ? l : 0;
@@ -133,7 +142,6 @@ inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params
     second[l] = e.second;
     constants[l] = static_cast<std::int32_t>(e.constants);
     at_entry[l] = (static_cast<long long>(c) + lane) * stride;
-    unbonded |= unsigned(!e.bonded && l < count) << l;
   }
   // The state's fields as doubles from the first entry's shear force.
   const double *state = entries[0].state.shear_force.data();
@@ -142,11 +150,7 @@ inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params
   const __m512i entry = _mm512_load_si512(at_entry);
   const Vectors old_normal{gather(entry, state + at_normal), gather(entry, state + at_normal + 1),
                            gather(entry, state + at_normal + 2)};
-  // Touching at the last pass: a nonzero old normal (ContactState::touching).
-  __mmask8 ordinary =
-    static_cast<__mmask8>(unbonded) & (nonzero(old_normal.x) | nonzero(old_normal.y) | nonzero(old_normal.z));
-  if (!ordinary)
-    return 0;
+  __mmask8 ordinary = static_cast<__mmask8>(candidates);
 
   const __m256i i = _mm256_load_si256(reinterpret_cast<const __m256i *>(first));
   const __m256i j = _mm256_load_si256(reinterpret_cast<const __m256i *>(second));

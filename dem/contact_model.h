@@ -282,6 +282,9 @@ private:
   {
     std::vector<BrokenBond> broken;
     std::vector<std::size_t> released;
+#if defined(__AVX512F__)
+    LaneResults lanes; ///< the range's blocks' results (kept off the stack)
+#endif
   };
 
   /// How far ahead the pass asks for the lines of the second ball's motion
@@ -312,17 +315,16 @@ private:
                                        PassEvents &events)
   {
 #if defined(__AVX512F__)
-    LaneResults lane;
+    LaneResults &lane = events.lanes;
     for (std::size_t block = begin; block < end; block += 8)
     {
-      if (block + entries_ahead + 8 <= end)
-        for (std::size_t c = block + entries_ahead; c < block + entries_ahead + 8; ++c)
-          prefetch_motion(p, contacts[c].second);
       const int count = static_cast<int>(std::min<std::size_t>(8, end - block));
       const __mmask8 resolved = linear_block(p, constants, contacts, block, count, dt, lane);
       for (int l = 0; l < count; ++l)
       {
         const std::size_t c = block + static_cast<std::size_t>(l);
+        if (c + entries_ahead < end)
+          prefetch_motion(p, contacts[c + entries_ahead].second);
         if ((resolved >> l) & 1)
         {
           lane.commit(l, contacts[c].state);
