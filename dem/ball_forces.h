@@ -43,6 +43,9 @@ struct BallForces
   /// resultant, and the position it gives the next pass, stay in the cache
   /// of the core that uses them.  The step moves the cuts after both.
   BalancedRanges &ranges;
+  /// Whether the linear law's ordinary contacts are resolved eight at a
+  /// time (SimulationSettings::contacts_in_lanes).
+  bool in_lanes;
 
   // The sums are kept as three doubles, not Vec3: the pass then compiles
   // to scalar multiply-adds instead of mixing two-lane and scalar halves

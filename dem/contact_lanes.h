@@ -18,17 +18,20 @@
 // A lane whose entry is bonded, did not touch at the last pass, separates
 // now (U <= 0) or slips is not resolved here: the block returns which lanes
 // it resolved, and the pass gives the others to resolve_contact, which
-// handles every case.  The entries are read where they are, in the table
-// (each field gathered with its stride), and the caller writes the new
-// state back: the table stays the only copy of every contact's state.
+// handles every case.  The pass queues the candidates (unbonded, touching
+// at the last pass) as it meets them and hands them over eight at a time,
+// so a bonded sample, whose few candidates lie far apart, fills its blocks
+// as a loose packing does.  The entries are read where they are, in the
+// table (each field gathered with its stride), and the caller writes the
+// new state back: the table stays the only copy of every contact's state.
 //
 // The arithmetic is resolve_contact's, operation for operation; only the
 // rounding can differ, where the compiler fuses a multiply and an add in
 // one path and not in the other (a test bounds the difference at a few
 // units in the last place of the forces).  So which path an entry takes
 // must depend on the entry alone, never on the entries beside it: a block
-// may hold fewer than eight (the end of a thread's range, of the table),
-// and each lane's arithmetic is its own.  A run then gives the same
+// holds whichever candidates came together (fewer than eight at the end of
+// a thread's range), and each lane's arithmetic is its own.  A run then gives the same
 // results on any thread count, and whatever the table holds beside an
 // entry (candidates of a wider or narrower skin).  On the identical-work
 // scene this path resolves about 83 % of the entries (BENCHMARKS.md,
@@ -101,7 +104,7 @@ inline Vectors gather3(__m256i index3, const double *base)
 inline Vectors operator-(const Vectors &a, const Vectors &b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline Vectors operator+(const Vectors &a, const Vectors &b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline Vectors operator*(Reals s, const Vectors &a) { return {s * a.x, s * a.y, s * a.z}; }
-inline Reals dot(const Vectors &a, const Vectors &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Reals dot(const Vectors &a, const Vectors &b) { return a.x * b.x + (a.y * b.y + a.z * b.z); }
 inline Vectors cross(const Vectors &a, const Vectors &b)
 {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -109,25 +112,25 @@ inline Vectors cross(const Vectors &a, const Vectors &b)
 inline __mmask8 positive(Reals a) { return _mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_GT_OQ); }
 } // namespace lanes
 
-/// The ordinary step of entries c .. c+count-1 of `entries` (count 1 to 8;
-/// see header note) at the current positions, dt the step that produced
+/// The ordinary step of entries queued[0 .. count-1] of `entries` (count 1
+/// to 8; see header note) at the current positions, dt the step that produced
 /// the displacement since the last pass; `params` the table's pair
 /// constants.  Returns the mask of the lanes it resolved, whose new state
 /// and loads are in `out`; it writes no entry.
-inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params, const Contact *entries, std::size_t c,
-                             int count, double dt, LaneResults &out)
+inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params, const Contact *entries,
+                             const std::size_t *queued, int count, double dt, LaneResults &out)
 {
   using namespace lanes;
   static_assert(sizeof(Contact) % sizeof(double) == 0, "entries are read as doubles with their stride");
   constexpr long long stride = sizeof(Contact) / sizeof(double);
-  // Lanes past `count` read entry c again and are never resolved.  A lane
-  // may be ordinary if its entry is unbonded and touched at the last pass;
-  // a block without one (most of a bonded sample's) stops here, having read
-  // only what the general resolver reads next.
+  // Lanes past `count` read the first lane's entry again and are never
+  // resolved.  A lane may be ordinary if its entry is unbonded and touched
+  // at the last pass (the pass queues only such entries; a block without
+  // one stops here).
   unsigned candidates = 0;
   for (int l = 0; l < count; ++l)
   {
-    const Contact &e = entries[c + static_cast<std::size_t>(l)];
+    const Contact &e = entries[queued[l]];
     candidates |= unsigned(!e.bonded && e.state.touching()) << l;
   }
   if (!candidates)
@@ -136,12 +139,12 @@ inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params
   alignas(64) long long at_entry[8];
   for (int l = 0; l < 8; ++l)
   {
-    const int lane = l < count ? l : 0;
-    const Contact &e = entries[c + static_cast<std::size_t>(lane)];
+    const std::size_t c = queued[l < count ? l : 0];
+    const Contact &e = entries[c];
     first[l] = e.first;
     second[l] = e.second;
     constants[l] = static_cast<std::int32_t>(e.constants);
-    at_entry[l] = (static_cast<long long>(c) + lane) * stride;
+    at_entry[l] = static_cast<long long>(c) * stride;
   }
   // The state's fields as doubles from the first entry's shear force.
   const double *state = entries[0].state.shear_force.data();

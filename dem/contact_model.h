@@ -142,9 +142,10 @@ public:
   // scene this made two threads about a tenth faster where the cores were
   // far apart and one thread no slower (BENCHMARKS.md, "Cores far apart").
   //
-  // The linear law resolves its entries eight at a time where the CPU has
-  // the instructions (contact_lanes.h); which entries the blocks resolve
-  // depends on each entry alone, so the ranges may cut anywhere.
+  // The linear law resolves its ordinary entries eight at a time where the
+  // CPU has the instructions and the run asks for it (contact_lanes.h,
+  // SimulationSettings::contacts_in_lanes); which entries the blocks
+  // resolve depends on each entry alone, so the ranges may cut anywhere.
   double resolve_and_sum(ContactTable &table, const BallForces &balls, std::vector<BrokenBond> &breaks) override
   {
     const ParticleStore &p = balls.particles;
@@ -171,7 +172,7 @@ public:
         events.released.clear();
         const double start = omp_get_wtime();
         const std::size_t first_entry = contact_ranges_.begin(r), last_entry = contact_ranges_.end(r);
-        if constexpr (in_lanes)
+        if (lanes_built && balls.in_lanes)
           resolve_in_lanes(p, contacts, constants, first_entry, last_entry, dt, loads, events);
         else
           for (std::size_t c = first_entry; c < last_entry; ++c)
@@ -307,24 +308,25 @@ private:
     __builtin_prefetch(reinterpret_cast<const char *>(&load) + 64);
   }
 
-  /// Resolves entries [begin, end) block by block: each block's ordinary
-  /// lanes at once (contact_lanes.h), its other entries one by one, in
-  /// entry order.
+  /// Resolves entries [begin, end): the ordinary candidates (unbonded,
+  /// touching at the last pass) eight at a time (contact_lanes.h), as they
+  /// gather, every other entry at once, one by one; a candidate that the
+  /// block does not resolve goes to the general resolver after it.
   DEM_HOT_INLINE void resolve_in_lanes(const ParticleStore &p, Contact *contacts, const ContactParams *constants,
                                        std::size_t begin, std::size_t end, double dt, PairLoad *loads,
                                        PassEvents &events)
   {
 #if defined(__AVX512F__)
     LaneResults &lane = events.lanes;
-    for (std::size_t block = begin; block < end; block += 8)
+    std::size_t queued[8];
+    int count = 0;
+    bool deferred_general = false;
+    const auto resolve_queued = [&]
     {
-      const int count = static_cast<int>(std::min<std::size_t>(8, end - block));
-      const __mmask8 resolved = linear_block(p, constants, contacts, block, count, dt, lane);
+      const __mmask8 resolved = linear_block(p, constants, contacts, queued, count, dt, lane);
       for (int l = 0; l < count; ++l)
       {
-        const std::size_t c = block + static_cast<std::size_t>(l);
-        if (c + entries_ahead < end)
-          prefetch_motion(p, contacts[c + entries_ahead].second);
+        const std::size_t c = queued[l];
         if ((resolved >> l) & 1)
         {
           lane.commit(l, contacts[c].state);
@@ -335,9 +337,33 @@ private:
                       lane.bound_second[l]};
         }
         else
+        {
           loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], nullptr, c, dt, events);
+          deferred_general = true;
+        }
       }
+      count = 0;
+    };
+    for (std::size_t c = begin; c < end; ++c)
+    {
+      if (c + entries_ahead < end)
+        prefetch_motion(p, contacts[c + entries_ahead].second);
+      const Contact &k = contacts[c];
+      if (!k.bonded && k.state.touching())
+      {
+        queued[count++] = c;
+        if (count == 8)
+          resolve_queued();
+      }
+      else
+        loads[c] = resolve_pair(p, contacts[c], constants[k.constants], nullptr, c, dt, events);
     }
+    if (count > 0)
+      resolve_queued();
+    // A deferred candidate's energies may have been released after a later
+    // entry's: the ledger retires them in entry order.
+    if (deferred_general)
+      std::sort(events.released.begin(), events.released.end());
 #else
     (void)p, (void)contacts, (void)constants, (void)begin, (void)end, (void)dt, (void)loads, (void)events;
 #endif
@@ -394,8 +420,8 @@ private:
   }
 
   static constexpr bool stateful = !Law::state_fields.empty();
-  /// Whether this law's entries are resolved in blocks of eight.
-  static constexpr bool in_lanes = contact_lanes && std::is_same_v<Law, LinearLaw>;
+  /// Whether this law's entries can be resolved in blocks of eight.
+  static constexpr bool lanes_built = contact_lanes && std::is_same_v<Law, LinearLaw>;
 
   /// The law history of entry c (a law without one has no slots to read).
   static typename Law::History history_of(const std::vector<LawState> &states, std::size_t c)

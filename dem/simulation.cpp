@@ -253,8 +253,8 @@ void Simulation::compute_forces()
   for (WallIndex w = 0; w < walls_.size(); ++w)
     if (walls_[w].enabled)
       active_walls_.push_back(w);
-  const BallForces balls{particles_, walls_,     active_walls_, settings_.gravity,
-                         dt_prev_,   row_bound_, wall_power_,   ball_ranges_};
+  const BallForces balls{particles_, walls_,      active_walls_, settings_.gravity,          dt_prev_,
+                         row_bound_, wall_power_, ball_ranges_,  settings_.contacts_in_lanes};
   broken_.clear();
   walls_.open_pass(omp_get_max_threads());
   // The bound of the contacts that exist; infinite when none carries force.

@@ -46,6 +46,12 @@ struct SimulationSettings
   bool allow_unstable_step = false; ///< run a fixed step above the bound anyway
   double skin_fraction = 0.25;      ///< -, neighbour skin / largest radius (the widest, when adaptive)
   bool adaptive_skin = true;        ///< narrow the skin while balls move slowly (Simulation::skin_for_rebuild)
+  /// Resolve the linear law's ordinary contacts eight at a time where the
+  /// CPU has AVX-512 (contact_lanes.h).  Faster where most contacts are
+  /// ordinary (an unbonded packing), slower where bonds break; the results
+  /// differ from the one-by-one path in the last bits, so a run keeps one
+  /// choice throughout (a scene without bonds turns it on).
+  bool contacts_in_lanes = false;
 };
 
 struct BondBreak

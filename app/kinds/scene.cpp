@@ -542,6 +542,10 @@ SceneSpec parse_scene(const Deck &deck)
   spec.motion = parse_motion(deck);
   spec.bonds = BondSpec::parse(deck);
   spec.bond_list = parse_bond_list(spec.bonds, spec.particles);
+  // Without bonds nearly every contact is ordinary and the linear law's
+  // blocks of eight pay; where bonds break they cost (BENCHMARKS.md, "Eight
+  // contacts per instruction").
+  spec.motion.contacts_in_lanes = spec.bonds.install == "none";
   spec.duration = deck.real("run/duration");
   spec.output.interval = deck.real("output/interval");
   spec.output.paraview = deck.flag("output/paraview");

@@ -347,14 +347,20 @@ TEST_CASE("the force pass gives the same balls and break log on one to three thr
   // thread count must change nothing, bonds breaking included, nor a count
   // that changes from step to step (as a run's thread governor may change
   // it: app/run/run.h); run(0) cycles through one to three threads.
+  // The linear law runs a second time with its ordinary contacts resolved
+  // eight at a time (where the build has them): the contacts of broken
+  // bonds become ordinary ones as the cylinder fails.
   const int threads_before = omp_get_max_threads();
-  for (const char *law : {"linear", "burgers", "modified_burgers"})
+  const std::pair<const char *, bool> variants[] = {
+    {"linear", false}, {"linear", true}, {"burgers", false}, {"modified_burgers", false}};
+  for (const auto &[law, in_lanes] : variants)
   {
-    INFO(law);
-    const auto run = [&](int threads)
+    INFO(law << (in_lanes ? ", contacts in lanes" : ""));
+    const auto run = [&, law = law, in_lanes = in_lanes](int threads)
     {
       omp_set_num_threads(threads);
       dem::Simulation sim = compressed_cylinder(law);
+      sim.settings().contacts_in_lanes = in_lanes;
       std::vector<dem::BondBreak> breaks;
       for (int k = 0; k < 400; ++k)
       {
