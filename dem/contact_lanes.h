@@ -2,7 +2,7 @@
 //
 // Most entries of a slow compression do the same thing at every step: an
 // unbonded contact that touched at the last pass still touches and sticks.
-// For eight consecutive entries of the table, one AVX-512 instruction per
+// For eight such entries of the table, one AVX-512 instruction per
 // operation (eight doubles) does what resolve_contact (contact_resolve.h)
 // does for each of them with the linear law (thesis §3.4.1):
 //
@@ -28,18 +28,22 @@
 // The arithmetic is resolve_contact's, operation for operation; only the
 // rounding can differ, where the compiler fuses a multiply and an add in
 // one path and not in the other (a test bounds the difference at a few
-// units in the last place of the forces).  So which path an entry takes
-// must depend on the entry alone, never on the entries beside it: a block
-// holds whichever candidates came together (fewer than eight at the end of
-// a thread's range), and each lane's arithmetic is its own.  A run then gives the same
-// results on any thread count, and whatever the table holds beside an
+// units in the last place of the forces; the dot products add as Eigen's
+// do, x + (y + z)).  So which path an entry takes must depend on the entry
+// alone, never on the entries beside it: a block holds whichever
+// candidates came together (fewer than eight at the end of a thread's
+// range), and each lane's arithmetic is its own.  A run then gives the
+// same results on any thread count, and whatever the table holds beside an
 // entry (candidates of a wider or narrower skin).  On the identical-work
 // scene this path resolves about 83 % of the entries (BENCHMARKS.md,
 // "Eight contacts per instruction").
 //
 // Built only where the compiler targets AVX-512 (DEMVV_NATIVE on such a
 // CPU); elsewhere contact_lanes is false and the pass resolves every entry
-// one by one.
+// one by one.  Used only where a run asks for it
+// (SimulationSettings::contacts_in_lanes): a scene without bonds does;
+// where bonds break, their contacts mostly slip, are tried here and then
+// resolved again, and the blocks cost more than they save.
 #pragma once
 
 #include "dem/contacts.h"
