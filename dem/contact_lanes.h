@@ -57,11 +57,8 @@
 
 namespace dem
 {
-#if defined(__AVX512F__)
-inline constexpr bool contact_lanes = true;
-
-/// What a block leaves for each lane it resolved: the new state and the
-/// loads on the two balls.
+/// What a block leaves for each lane it resolved (the same layout in every
+/// build, so that every file sees one PassEvents, whatever its flags).
 struct LaneResults
 {
   alignas(64) double normal_x[8], normal_y[8], normal_z[8]; ///< unit normal n
@@ -81,6 +78,9 @@ struct LaneResults
     s.overlap = overlap[l];
   }
 };
+
+#if defined(__AVX512F__)
+inline constexpr bool contact_lanes = true;
 
 namespace lanes
 {

@@ -68,6 +68,9 @@ public:
 
   /// Whether the law keeps history of its own in the table's LawState slots.
   virtual bool keeps_law_state() const = 0;
+  /// Whether this build can resolve the law's ordinary contacts eight at a
+  /// time (contact_lanes.h: the linear law, on a CPU with AVX-512).
+  virtual bool has_lanes() const = 0;
 
   /// Whether the energy ledger books every dissipation of the law (energy.h):
   /// a law with history of its own (the Burger's dashpots) dissipates
@@ -241,6 +244,7 @@ public:
   void release_scratch() override { std::vector<PairLoad>().swap(loads_); }
 
   bool keeps_law_state() const override { return stateful; }
+  bool has_lanes() const override { return lanes_built; }
 
   bool books_every_dissipation() const override { return !stateful; }
 
@@ -283,9 +287,7 @@ private:
   {
     std::vector<BrokenBond> broken;
     std::vector<std::size_t> released;
-#if defined(__AVX512F__)
     LaneResults lanes; ///< the range's blocks' results (kept off the stack)
-#endif
   };
 
   /// How far ahead the pass asks for the lines of the second ball's motion

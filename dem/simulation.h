@@ -245,6 +245,9 @@ public:
   const ContactTable &contacts() const { return contacts_; }
   const ContactModel &model() const { return *model_; }
   const NeighborList &neighbors() const { return neighbors_; }
+  /// Whether the pass resolves the law's ordinary contacts eight at a time:
+  /// the settings ask for it and the law and the build can.
+  bool contacts_in_lanes() const { return settings_.contacts_in_lanes && model_->has_lanes(); }
   SimulationSettings &settings() { return settings_; }
   const SimulationSettings &settings() const { return settings_; }
 

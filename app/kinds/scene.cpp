@@ -497,6 +497,7 @@ public:
       {"critical_time_step_bound_s", resolution.smallest_bound_json()},
       {"contact_resolution", resolution.to_json()},
       {"neighbour_rebuilds", sim.neighbors().rebuilds()},
+      {"contacts_in_lanes", sim.contacts_in_lanes()},
       {"bonds",
        {{"installed", result_.bonds.bonded},
         {"removed", result_.bonds.removed},
