@@ -319,56 +319,59 @@ private:
                                        PassEvents &events)
   {
 #if defined(__AVX512F__)
-    LaneResults &lane = events.lanes;
-    std::size_t queued[8];
-    int count = 0;
-    bool deferred_general = false;
-    const auto resolve_queued = [&]
+    if constexpr (lanes_built) // the linear law's: no other law is ever resolved here
     {
-      const __mmask8 resolved = linear_block(p, constants, contacts, queued, count, dt, lane);
-      for (int l = 0; l < count; ++l)
+      LaneResults &lane = events.lanes;
+      std::size_t queued[8];
+      int count = 0;
+      bool deferred_general = false;
+      const auto resolve_queued = [&]
       {
-        const std::size_t c = queued[l];
-        if ((resolved >> l) & 1)
+        const __mmask8 resolved = linear_block(p, constants, contacts, queued, count, dt, lane);
+        for (int l = 0; l < count; ++l)
         {
-          lane.commit(l, contacts[c].state);
-          loads[c] = {{lane.force_x[l], lane.force_y[l], lane.force_z[l]},
-                      {lane.lever_x[l], lane.lever_y[l], lane.lever_z[l]},
-                      lane.overlap[l],
-                      lane.bound_first[l],
-                      lane.bound_second[l]};
+          const std::size_t c = queued[l];
+          if ((resolved >> l) & 1)
+          {
+            lane.commit(l, contacts[c].state);
+            loads[c] = {{lane.force_x[l], lane.force_y[l], lane.force_z[l]},
+                        {lane.lever_x[l], lane.lever_y[l], lane.lever_z[l]},
+                        lane.overlap[l],
+                        lane.bound_first[l],
+                        lane.bound_second[l]};
+          }
+          else
+          {
+            loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], nullptr, c, dt, events);
+            deferred_general = true;
+          }
+        }
+        count = 0;
+      };
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        if (c + entries_ahead < end)
+          prefetch_motion(p, contacts[c + entries_ahead].second);
+        const Contact &k = contacts[c];
+        if (!k.bonded && k.state.touching())
+        {
+          queued[count++] = c;
+          if (count == 8)
+            resolve_queued();
         }
         else
-        {
-          loads[c] = resolve_pair(p, contacts[c], constants[contacts[c].constants], nullptr, c, dt, events);
-          deferred_general = true;
-        }
+          loads[c] = resolve_pair(p, contacts[c], constants[k.constants], nullptr, c, dt, events);
       }
-      count = 0;
-    };
-    for (std::size_t c = begin; c < end; ++c)
-    {
-      if (c + entries_ahead < end)
-        prefetch_motion(p, contacts[c + entries_ahead].second);
-      const Contact &k = contacts[c];
-      if (!k.bonded && k.state.touching())
-      {
-        queued[count++] = c;
-        if (count == 8)
-          resolve_queued();
-      }
-      else
-        loads[c] = resolve_pair(p, contacts[c], constants[k.constants], nullptr, c, dt, events);
+      if (count > 0)
+        resolve_queued();
+      // A deferred candidate's energies may have been released after a later
+      // entry's: the ledger retires them in entry order.
+      if (deferred_general)
+        std::sort(events.released.begin(), events.released.end());
+      return;
     }
-    if (count > 0)
-      resolve_queued();
-    // A deferred candidate's energies may have been released after a later
-    // entry's: the ledger retires them in entry order.
-    if (deferred_general)
-      std::sort(events.released.begin(), events.released.end());
-#else
-    (void)p, (void)contacts, (void)constants, (void)begin, (void)end, (void)dt, (void)loads, (void)events;
 #endif
+    (void)p, (void)contacts, (void)constants, (void)begin, (void)end, (void)dt, (void)loads, (void)events;
   }
 
   /// Resolves contact c (entry k, pair constants `pair`) at this step and
