@@ -79,6 +79,11 @@ struct LaneResults
   }
 };
 
+/// Whether entry e may be ordinary at this pass: unbonded and touching at
+/// the last pass.  The pass queues such entries for the blocks, and a block
+/// resolves no other.
+inline bool lane_candidate(const Contact &e) { return !e.bonded && e.state.touching(); }
+
 #if defined(__AVX512F__)
 inline constexpr bool contact_lanes = true;
 
@@ -135,7 +140,7 @@ inline __mmask8 linear_block(const ParticleStore &p, const ContactParams *params
   for (int l = 0; l < count; ++l)
   {
     const Contact &e = entries[queued[l]];
-    candidates |= unsigned(!e.bonded && e.state.touching()) << l;
+    candidates |= unsigned(lane_candidate(e)) << l;
   }
   if (!candidates)
     return 0;

@@ -353,7 +353,7 @@ private:
         if (c + entries_ahead < end)
           prefetch_motion(p, contacts[c + entries_ahead].second);
         const Contact &k = contacts[c];
-        if (!k.bonded && k.state.touching())
+        if (lane_candidate(k))
         {
           queued[count++] = c;
           if (count == 8)
