@@ -400,3 +400,94 @@ TEST_CASE("the force pass gives the same balls and break log on one to three thr
   }
   omp_set_num_threads(threads_before);
 }
+
+TEST_CASE("a pass with the contacts in lanes gives the one-by-one pass's loads, row bounds and break log",
+          "[dem][lanes]")
+{
+  // The same table at the same positions, resolved once each way.  The
+  // blocks resolve the ordinary contacts (contact_lanes.h) and leave the
+  // rest, slips and breaks included, to the one-by-one resolver, so:
+  //   - friction work, bonds, break log and stability row bounds are equal
+  //     to the bit (a block leaves the stored terms that the resolver uses
+  //     in compression, and the sums keep one order);
+  //   - a contact's forces may differ by the blocks' own bound (their test
+  //     argues 1e-12 of the force scale |F_n| + |F_s|) plus K^n times the
+  //     overlap's roundings: U = R_i + R_j - |d| is a difference of numbers
+  //     the size of R_i + R_j, so eight ulps of that; at the small
+  //     overlaps of a barely loaded contact this term is the larger;
+  //   - a ball sums at most a dozen contacts, so sixteen times the table's
+  //     largest contact bound bounds a resultant, and that times the
+  //     largest radius a torque.
+  // The cylinder is compared at each of its first thirty steps, as it
+  // fails: its bonds break, and their contacts become ordinary ones, which
+  // stick or slip.
+  dem::Simulation sim = compressed_cylinder("linear");
+  if (!sim.model().has_lanes())
+  {
+    WARN("this build resolves every contact one by one (no AVX-512): nothing to compare");
+    return;
+  }
+  const auto pass = [&](bool in_lanes)
+  {
+    struct Result
+    {
+      dem::ParticleStore particles;
+      dem::ContactTable table;
+      std::vector<double> row_bound;
+      std::vector<dem::BrokenBond> breaks;
+    } r{sim.particles(), sim.contacts(), {}, {}};
+    dem::WallSet walls;
+    const std::vector<dem::WallIndex> no_walls;
+    std::vector<double> wall_power(r.particles.size());
+    r.row_bound.resize(r.particles.size());
+    dem::BalancedRanges ranges;
+    const dem::BallForces balls{r.particles, walls,      no_walls, Vec3::Zero(), sim.time_step(),
+                                r.row_bound, wall_power, ranges,   in_lanes};
+    const std::unique_ptr<dem::ContactModel> model = dem::make_contact_model("linear", {});
+    model->resolve_and_sum(r.table, balls, r.breaks);
+    return r;
+  };
+  double widest = 0;
+  for (dem::Index p = 0; p < sim.particles().size(); ++p)
+    widest = std::max(widest, sim.particles().radius[p]);
+  std::size_t ordinary = 0, slipping = 0, breaks = 0;
+  for (int step = 0; step < 30; ++step)
+  {
+    INFO("step " << step);
+    const auto one_by_one = pass(false), in_lanes = pass(true);
+    double largest = 0;
+    for (std::size_t c = 0; c < one_by_one.table.size(); ++c)
+    {
+      const dem::Contact &a = one_by_one.table[c], &b = in_lanes.table[c];
+      const double reach = sim.particles().radius[a.first] + sim.particles().radius[a.second];
+      const double tolerance = 1e-12 * (std::abs(a.state.normal_force) + a.state.shear_force.norm()) +
+                               one_by_one.table.params(a).kn * 8 * std::numeric_limits<double>::epsilon() * reach;
+      largest = std::max(largest, tolerance);
+      INFO("contact " << c);
+      REQUIRE(a.bonded == b.bonded);
+      CHECK(std::abs(a.state.normal_force - b.state.normal_force) <= tolerance);
+      CHECK((a.state.shear_force - b.state.shear_force).norm() <= tolerance);
+      CHECK(a.state.friction_work == b.state.friction_work);
+      ordinary += dem::lane_candidate(sim.contacts()[c]) ? 1 : 0;
+      slipping += a.state.friction_work != sim.contacts()[c].state.friction_work ? 1 : 0;
+    }
+    bool same_balls = true;
+    for (dem::Index p = 0; p < sim.particles().size(); ++p)
+      same_balls = same_balls && (one_by_one.particles.force[p] - in_lanes.particles.force[p]).norm() <= 16 * largest &&
+                   (one_by_one.particles.torque[p] - in_lanes.particles.torque[p]).norm() <= 16 * largest * widest &&
+                   one_by_one.row_bound[p] == in_lanes.row_bound[p];
+    CHECK(same_balls);
+    REQUIRE(one_by_one.breaks.size() == in_lanes.breaks.size());
+    for (std::size_t k = 0; k < one_by_one.breaks.size(); ++k)
+    {
+      CHECK(one_by_one.breaks[k].contact == in_lanes.breaks[k].contact);
+      CHECK(one_by_one.breaks[k].mode == in_lanes.breaks[k].mode);
+    }
+    breaks += one_by_one.breaks.size();
+    sim.step();
+  }
+  // The table held what the pass must handle.
+  CHECK(ordinary > 1000);
+  CHECK(slipping > 100);
+  CHECK(breaks > 150);
+}
